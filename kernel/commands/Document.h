@@ -1,0 +1,88 @@
+#pragma once
+// A sculpture being worked on: the model, its undo history, its journal and its compiled,
+// relaxed mass-spring system. Every change goes through execute(); undo()/redo() restore the
+// model bit for bit. When a journal file is attached every entry is appended and synced before
+// the call returns (DESIGN.md "Journal").
+
+#include "commands/Command.h"
+#include "model/Compiler.h"
+#include "physics/Relaxer.h"
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace netsculpt {
+
+class Journal;
+
+/// Relaxation backends: "auto" (the fastest that converges), "rk4" (the paper's overdamped RK4),
+/// "fast", "bullet" (when built with Bullet).
+struct DocumentRelaxOptions {
+    RelaxOptions solver;
+    std::string backend = "auto";
+};
+
+class Document {
+  public:
+    Document();
+    ~Document();
+    Document(Document&&) noexcept;
+    Document& operator=(Document&&) noexcept;
+
+    /// Replays a journal file and keeps appending to it. A torn or garbled last entry is dropped
+    /// and reported in `warnings`; any other problem throws UserError with the line number.
+    static Document open(const std::filesystem::path& journal, std::vector<std::string>* warnings = nullptr);
+    /// Opens a snapshot (see saveSnapshot) or a journal, by content.
+    static Document load(const std::filesystem::path& file, std::vector<std::string>* warnings = nullptr);
+
+    /// Starts journaling to `path` (created or truncated): the header and the history so far.
+    void attachJournal(const std::filesystem::path& path);
+    /// Writes a compacted journal (the commands that build the current state) to `path`; if a
+    /// journal is attached it stays attached. Marks the document clean.
+    void save(const std::filesystem::path& path);
+    /// Writes the model and the current positions as one file that opens fast; opening it
+    /// gives the same hash() as replaying the journal.
+    void saveSnapshot(const std::filesystem::path& path) const;
+
+    /// Validates, applies, recompiles and journals. With merge = true the command joins the
+    /// previous undo step when canMerge() allows (a continuous gesture). Throws UserError and
+    /// leaves everything (model, history, journal) as it was.
+    CommandResult execute(const Command& command, bool merge = false);
+    bool canUndo() const;
+    bool canRedo() const;
+    void undo(); ///< UserError when there is nothing to undo
+    void redo(); ///< UserError when there is nothing to redo
+    /// Ends the current merge run: the next execute(…, merge = true) starts a new undo step.
+    void endGesture();
+
+    /// No changes since the last save / open (the clean index).
+    bool isClean() const;
+    void markClean();
+
+    const Sculpture& sculpture() const;
+    /// The compiled system of the current model; positions are relaxed ones when relax() ran
+    /// (kept across edits as a warm start for knots that still exist).
+    const CompiledSculpture& compiled() const;
+    CompiledSculpture& compiled();
+    /// The last relaxation's result (converged = false before any).
+    const RelaxResult& lastRelax() const;
+    bool isRelaxed() const; ///< a relaxation converged since the last change
+
+    RelaxResult relax(const DocumentRelaxOptions& options = {});
+
+    /// FNV-1a over the model in a fixed order: equal hashes = the same sculpture.
+    std::uint64_t hash() const;
+    /// The commands of the history (for to-lua), as journaled.
+    std::string toLua() const;
+
+  private:
+    struct State;
+    std::unique_ptr<State> state_;
+};
+
+/// FNV-1a hash of a sculpture (rails, pieces, seams, id counters, gravity), fixed order.
+std::uint64_t hashSculpture(const Sculpture& s);
+
+} // namespace netsculpt

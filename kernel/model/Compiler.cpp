@@ -1,0 +1,344 @@
+#include "model/Compiler.h"
+
+#include "model/Error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <unordered_set>
+
+namespace netsculpt {
+
+namespace {
+
+constexpr std::uint32_t kUnassigned = 0xffffffffu;
+
+/// Union-find over model knot slots (piece, row, column), merged where knots are shared.
+class KnotSlots {
+  public:
+    explicit KnotSlots(const Sculpture& s) : order_(s.topologicalOrder()) {
+        std::size_t base = 0;
+        for (PieceId id : order_) {
+            const Piece& p = s.pieces.at(id);
+            base_[id] = base;
+            base += std::size_t(p.rows) * p.columns;
+        }
+        parent_.resize(base);
+        std::iota(parent_.begin(), parent_.end(), std::size_t{0});
+    }
+    const std::vector<PieceId>& order() const { return order_; }
+    std::size_t slot(PieceId id, int row, int column, int columns) const {
+        return base_.at(id) + std::size_t(row) * columns + column;
+    }
+    std::size_t find(std::size_t a) {
+        while (parent_[a] != a) a = parent_[a] = parent_[parent_[a]];
+        return a;
+    }
+    void unite(std::size_t a, std::size_t b) {
+        a = find(a);
+        b = find(b);
+        if (a != b) parent_[std::max(a, b)] = std::min(a, b); // the earlier slot represents
+    }
+    std::size_t size() const { return parent_.size(); }
+
+  private:
+    std::vector<PieceId> order_;
+    std::map<PieceId, std::size_t> base_;
+    std::vector<std::size_t> parent_;
+};
+
+/// Which source knots a child's row-0 column stands on (DESIGN.md gear rules).
+struct TopLink {
+    int shared = -1;          ///< index into the source row, when the column is a shared knot
+    int left = -1, right = -1; ///< the two nearest shared knots of a new gear-up knot
+    double fraction = 0;      ///< where the new knot lies between left and right
+};
+
+TopLink topLink(const ParentEdge& edge, int column, int sourceKnots) {
+    const int v = edge.offset + column;
+    const auto wrap = [&](int i) { return edge.ringClosed ? ((i % sourceKnots) + sourceKnots) % sourceKnots : i; };
+    TopLink link;
+    if (edge.gear.den > 1) {
+        link.shared = wrap(v * edge.gear.den);
+    } else if (v % edge.gear.num == 0) {
+        link.shared = wrap(v / edge.gear.num);
+    } else {
+        link.left = wrap(v / edge.gear.num);
+        link.right = wrap(v / edge.gear.num + 1);
+        link.fraction = double(v % edge.gear.num) / edge.gear.num;
+    }
+    return link;
+}
+
+/// The knots (row - 1, column') a knot (row, column) hangs from, by the staggering rule.
+int parentsAbove(const Piece& p, int row, int column, int out[2]) {
+    const int c = p.columns;
+    int candidates[2];
+    if (row % 2 == 1) {
+        candidates[0] = column;
+        candidates[1] = column + 1;
+    } else {
+        candidates[0] = column - 1;
+        candidates[1] = column;
+    }
+    int n = 0;
+    for (int cand : candidates) {
+        if (p.closed) cand = ((cand % c) + c) % c;
+        if (cand >= 0 && cand < c) out[n++] = cand;
+    }
+    return n;
+}
+
+/// Eq. 1 and 2: a knot hung from two points by bars of length l sits at their midpoint minus h z.
+Vec3 hangBetween(const Vec3& a, const Vec3& b, double fraction, double l, const Piece& p, int row, int column) {
+    const double s = distance(a, b);
+    if (!(l > 0.5 * s))
+        throw UserError(toString(p.id) + ": bar length " + formatNumber(l) + " m at row " + std::to_string(row) +
+                        ", column " + std::to_string(column) + " is not above half the spacing of the knots it hangs from (" +
+                        formatNumber(s) + " m / 2 = " + formatNumber(0.5 * s) + " m)");
+    const double h = std::sqrt(l * l - 0.25 * s * s);
+    // The midpoint is formed symmetrically so that the result does not depend on which parent
+    // comes first (a seam knot meets its parents from either piece).
+    const Vec3 along = fraction == 0.5 ? (a + b) * 0.5 : a + (b - a) * fraction;
+    return along - Vec3{0, 0, h};
+}
+
+class Builder {
+  public:
+    explicit Builder(const Sculpture& s) : s_(s), slots_(s) {}
+
+    CompiledSculpture build() {
+        uniteSharedKnots();
+        assignIndices();
+        buildBars();
+        placeKnots();
+        finishMasses();
+        out_.system.gravity = s_.gravity;
+        return std::move(out_);
+    }
+
+  private:
+    const Sculpture& s_;
+    KnotSlots slots_;
+    CompiledSculpture out_;
+    std::vector<std::uint32_t> indexOfRoot_;
+    /// A knot that another hangs from, with the bar's rest length; fraction >= 0 marks the left
+    /// shared knot of a gear-up knot (which lies that far towards the right one).
+    struct Upper {
+        std::uint32_t knot;
+        double length;
+        double fraction;
+    };
+    std::vector<std::vector<Upper>> uppers_;
+    std::vector<PieceId> massOwner_;
+
+    std::size_t slot(const Piece& p, int row, int column) const { return slots_.slot(p.id, row, column, p.columns); }
+    std::size_t slot(const KnotKey& k) const { return slot(s_.pieces.at(k.piece), k.row, k.column); }
+
+    void uniteSharedKnots() {
+        for (PieceId id : slots_.order()) {
+            const Piece& p = s_.pieces.at(id);
+            if (p.onRail()) continue;
+            const auto source = sourceRow(s_, p.parentTop());
+            for (int c = 0; c < p.columns; ++c) {
+                const TopLink link = topLink(p.parentTop(), c, int(source.size()));
+                if (link.shared >= 0) slots_.unite(slot(p, 0, c), slot(source[link.shared]));
+            }
+        }
+        for (const Seam& seam : s_.seams) {
+            const Piece& left = s_.pieces.at(seam.left);
+            const Piece& right = s_.pieces.at(seam.right);
+            for (int r = 0; r < std::min(left.rows, right.rows); ++r)
+                slots_.unite(slot(left, r, left.columns - 1), slot(right, r, 0));
+        }
+    }
+
+    void assignIndices() {
+        indexOfRoot_.assign(slots_.size(), kUnassigned);
+        MassSpringSystem& sys = out_.system;
+        std::vector<std::vector<KnotRef>> refs;
+        for (PieceId id : slots_.order()) {
+            const Piece& p = s_.pieces.at(id);
+            PieceKnots& pk = out_.pieces[id];
+            pk.rows = p.rows;
+            pk.columns = p.columns;
+            pk.index.resize(std::size_t(p.rows) * p.columns);
+            for (int r = 0; r < p.rows; ++r)
+                for (int c = 0; c < p.columns; ++c) {
+                    const std::size_t root = slots_.find(slot(p, r, c));
+                    if (indexOfRoot_[root] == kUnassigned) {
+                        indexOfRoot_[root] = std::uint32_t(refs.size());
+                        refs.emplace_back();
+                        massOwner_.push_back(id);
+                    }
+                    const std::uint32_t k = indexOfRoot_[root];
+                    pk.index[std::size_t(r) * p.columns + c] = k;
+                    refs[k].push_back({id, r, c});
+                }
+        }
+        const std::size_t n = refs.size();
+        sys.position.assign(n, Vec3{});
+        sys.mass.assign(n, 0.0);
+        sys.fixed.assign(n, 0);
+        sys.hold.assign(n, RailHold{});
+        sys.refStart.assign(n + 1, 0);
+        for (std::size_t k = 0; k < n; ++k) {
+            sys.refStart[k + 1] = sys.refStart[k] + std::uint32_t(refs[k].size());
+            sys.refs.insert(sys.refs.end(), refs[k].begin(), refs[k].end());
+        }
+        uppers_.assign(n, {});
+    }
+
+    void fixOnRail(std::uint32_t k, const RailEdge& edge, int column) {
+        MassSpringSystem& sys = out_.system;
+        if (sys.fixed[k]) return; // the first rail that holds a knot places it
+        const double t = railPosition(edge, column);
+        sys.position[k] = s_.rail(edge.rail).curve().pointAt(t);
+        sys.fixed[k] = 1;
+        sys.hold[k] = RailHold{edge.rail, t};
+    }
+
+    void fixRailRows() {
+        for (PieceId id : slots_.order()) {
+            const Piece& p = s_.pieces.at(id);
+            const PieceKnots& pk = out_.pieces.at(id);
+            if (p.onRail())
+                for (int c = 0; c < p.columns; ++c) fixOnRail(pk.at(0, c), p.railTop(), c);
+            if (p.bottom)
+                for (int c = 0; c < p.columns; ++c) fixOnRail(pk.at(p.rows - 1, c), *p.bottom, c);
+        }
+    }
+
+    /// Places a knot from the knots it hangs from (Eq. 1 and 2), all of them already placed.
+    void placeFromUppers(std::uint32_t k) {
+        const auto& uppers = uppers_[k];
+        auto& pos = out_.system.position;
+        const Upper& u0 = uppers[0];
+        if (uppers.size() == 1) {
+            pos[k] = pos[u0.knot] - Vec3{0, 0, u0.length};
+            return;
+        }
+        const Upper& u1 = uppers[1];
+        const KnotRef& ref = out_.system.refs[out_.system.refStart[k]];
+        const double fraction = u0.fraction >= 0 ? u0.fraction : 0.5;
+        pos[k] = hangBetween(pos[u0.knot], pos[u1.knot], fraction, 0.5 * (u0.length + u1.length),
+                             s_.pieces.at(ref.piece), ref.row, ref.column);
+    }
+
+    /// Kahn's order over "hangs from": a knot is placed once every knot it hangs from is.
+    void placeKnots() {
+        fixRailRows();
+        const std::size_t n = out_.system.knotCount();
+        std::vector<std::uint32_t> waiting(n, 0);
+        std::vector<std::vector<std::uint32_t>> lowers(n);
+        for (std::uint32_t k = 0; k < n; ++k) {
+            if (out_.system.fixed[k]) continue;
+            waiting[k] = std::uint32_t(uppers_[k].size());
+            for (const Upper& u : uppers_[k]) lowers[u.knot].push_back(k);
+        }
+        std::vector<std::uint32_t> queue;
+        for (std::uint32_t k = 0; k < n; ++k)
+            if (out_.system.fixed[k] || waiting[k] == 0) queue.push_back(k);
+        for (std::size_t i = 0; i < queue.size(); ++i) {
+            const std::uint32_t k = queue[i];
+            if (!out_.system.fixed[k] && !uppers_[k].empty()) placeFromUppers(k);
+            for (std::uint32_t lower : lowers[k])
+                if (--waiting[lower] == 0) queue.push_back(lower);
+        }
+    }
+
+    /// A bar from knot `a` up to knot `b` (b is in the row above, or a shared knot of a gear).
+    void addBar(std::unordered_set<std::uint64_t>& seen, const Piece& p, std::uint32_t a, std::uint32_t b, double l,
+                double fraction = -1) {
+        if (a == b) return;
+        auto& uppers = uppers_[a];
+        if (uppers.size() < 2 && std::none_of(uppers.begin(), uppers.end(), [&](const Upper& u) { return u.knot == b; }))
+            uppers.push_back({b, l, fraction});
+        const std::uint64_t key = (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+        if (!seen.insert(key).second) return; // a seam's shared column: the bar already exists
+        MassSpringSystem& sys = out_.system;
+        const double ks = p.material.stiffness / l;
+        sys.barA.push_back(a);
+        sys.barB.push_back(b);
+        sys.restLength.push_back(l);
+        sys.kTension.push_back(ks);
+        sys.kCompression.push_back(p.material.compressionRatio * ks);
+        sys.linearDensity.push_back(p.material.linearDensity);
+        sys.barPiece.push_back(p.id);
+    }
+
+    void buildBars() {
+        std::unordered_set<std::uint64_t> seen;
+        for (PieceId id : slots_.order()) {
+            const Piece& p = s_.pieces.at(id);
+            const PieceKnots& pk = out_.pieces.at(id);
+            if (!p.onRail()) {
+                const auto source = sourceRow(s_, p.parentTop());
+                for (int c = 0; c < p.columns; ++c) {
+                    const TopLink link = topLink(p.parentTop(), c, int(source.size()));
+                    if (link.shared >= 0) continue;
+                    const double l = p.barLength(0, c, 0, c);
+                    for (int side : {link.left, link.right}) {
+                        const KnotKey& k = source[side];
+                        addBar(seen, p, pk.at(0, c), out_.knotOf(k.piece, k.row, k.column), l,
+                               side == link.left ? link.fraction : -1);
+                    }
+                }
+            }
+            for (int r = 1; r < p.rows; ++r)
+                for (int c = 0; c < p.columns; ++c) {
+                    int up[2];
+                    const int n = parentsAbove(p, r, c, up);
+                    for (int i = 0; i < n; ++i)
+                        addBar(seen, p, pk.at(r, c), pk.at(r - 1, up[i]), p.barLength(r, c, r - 1, up[i]));
+                }
+        }
+    }
+
+    void finishMasses() {
+        MassSpringSystem& sys = out_.system;
+        for (std::size_t k = 0; k < sys.knotCount(); ++k) sys.mass[k] = s_.pieces.at(massOwner_[k]).material.knotMass;
+        for (std::size_t b = 0; b < sys.barCount(); ++b) {
+            const double half = 0.5 * sys.linearDensity[b] * sys.restLength[b];
+            sys.mass[sys.barA[b]] += half;
+            sys.mass[sys.barB[b]] += half;
+        }
+    }
+};
+
+} // namespace
+
+double railPosition(const RailEdge& edge, int column) {
+    const double offset = double(edge.offset + column) * edge.step;
+    return edge.reverse ? edge.at - offset : edge.at + offset;
+}
+
+std::uint32_t CompiledSculpture::knotOf(PieceId piece, int row, int column) const {
+    auto it = pieces.find(piece);
+    if (it == pieces.end()) throw UserError("there is no " + toString(piece) + " in the compiled sculpture");
+    const PieceKnots& pk = it->second;
+    if (row < 0 || row >= pk.rows || column < 0 || column >= pk.columns)
+        throw UserError(toString(piece) + " has rows 0.." + std::to_string(pk.rows - 1) + " and columns 0.." +
+                        std::to_string(pk.columns - 1) + "; got row " + std::to_string(row) + ", column " +
+                        std::to_string(column));
+    return pk.at(row, column);
+}
+
+CompiledSculpture compileSculpture(const Sculpture& s) { return Builder(s).build(); }
+
+std::size_t carryPositions(const CompiledSculpture& previous, CompiledSculpture& next) {
+    MassSpringSystem& sys = next.system;
+    std::size_t carried = 0;
+    for (std::size_t k = 0; k < sys.knotCount(); ++k) {
+        if (sys.fixed[k]) continue;
+        const KnotRef& ref = sys.refs[sys.refStart[k]];
+        auto it = previous.pieces.find(ref.piece);
+        if (it == previous.pieces.end() || ref.row >= it->second.rows || ref.column >= it->second.columns) continue;
+        if (it->second.rows == 0) continue;
+        sys.position[k] = previous.system.position[it->second.at(ref.row, ref.column)];
+        ++carried;
+    }
+    return carried;
+}
+
+} // namespace netsculpt

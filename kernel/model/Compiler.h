@@ -1,0 +1,40 @@
+#pragma once
+// Compiles a sculpture into its flat mass-spring system (DESIGN.md "Net piece", "How pieces are
+// joined", "Physics"): one knot per distinct knot of the model (shared knots of gear junctions,
+// seams and g = 1 joins are one knot), one bar per distinct pair, initial positions from
+// Eq. 1 and 2 of the paper, masses and stiffnesses from each piece's material.
+
+#include "model/Sculpture.h"
+#include "physics/MassSpringSystem.h"
+
+#include <map>
+
+namespace netsculpt {
+
+/// Where a piece's knots went in the system: index[row * columns + column].
+struct PieceKnots {
+    int rows = 0;
+    int columns = 0;
+    std::vector<std::uint32_t> index;
+    std::uint32_t at(int row, int column) const { return index[std::size_t(row) * columns + column]; }
+};
+
+struct CompiledSculpture {
+    MassSpringSystem system;
+    std::map<PieceId, PieceKnots> pieces;
+    /// Knot index of a piece's (row, column). Throws UserError when out of range.
+    std::uint32_t knotOf(PieceId piece, int row, int column) const;
+};
+
+/// Compiles `s` (already refreshed and validated). Throws UserError when the initial geometry
+/// does not exist: a bar length not above half the spacing of the two knots it hangs from.
+CompiledSculpture compileSculpture(const Sculpture& s);
+
+/// Rail position t of column c of a rail edge.
+double railPosition(const RailEdge& edge, int column);
+
+/// Copies positions of knots that stand for the same (piece, row, column) from `previous` into
+/// `next`'s free knots (a warm start after an edit). Returns how many knots were carried over.
+std::size_t carryPositions(const CompiledSculpture& previous, CompiledSculpture& next);
+
+} // namespace netsculpt

@@ -1,0 +1,92 @@
+#pragma once
+// Relaxation: moving the free knots of a mass-spring system until the force of Eq. 3 vanishes
+// (DESIGN.md "Physics"). The options, progress and result are shared by every backend; the
+// default backend integrates the paper's overdamped motion dx/dt = M^-1 F (Eq. 7) with
+// classical RK4 and stiffness continuation.
+
+#include "physics/MassSpringSystem.h"
+#include "physics/Wind.h"
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace netsculpt {
+
+/// A snapshot of a running relaxation, handed to RelaxOptions::progress.
+struct RelaxProgress {
+    double residual = 0;              ///< max |F_j| / (m_j |g|) over free knots at the current stiffness scale
+    std::int64_t steps = 0;           ///< integration steps taken so far (rejected ones included)
+    double seconds = 0;               ///< wall time since the start, s
+    double estimatedSecondsLeft = -1; ///< s until the tolerance at full stiffness; < 0 = unknown
+    double stiffnessScale = 1;        ///< the continuation stage's scale s in (0, 1]; 1 = the material
+};
+
+struct RelaxOptions {
+    double tolerance = 1e-6; ///< converged when the residual at full stiffness is below it; finite, > 0
+    double maxSeconds = 60;  ///< wall-time limit, s; finite, > 0 (infinity is refused)
+    std::int64_t maxSteps = -1; ///< limit on integration steps; -1 = none, else >= 0
+    /// Threads of the force evaluation: 0 = automatic (the hardware's, but one for systems too
+    /// small to gain from more), n >= 1 = exactly n. Results do not depend on it, bit for bit.
+    int threads = 0;
+    /// Polled once per step; when it reads true the run stops with stopReason "cancelled" and
+    /// the last state reached. Null = not cancellable. Must outlive the call.
+    const std::atomic<bool>* cancel = nullptr;
+    /// Called on the calling thread about every progressInterval seconds, and once at the end.
+    /// Empty = none. It must not touch the system being relaxed.
+    std::function<void(const RelaxProgress&)> progress;
+    double progressInterval = 0.2; ///< s; finite, >= 0 (0 = every step)
+    /// Stiffness continuation (the paper's): relax first with every stiffness scaled by
+    /// previewStiffnessScale, then scale up by continuationFactor per stage to the material's.
+    /// Skipped when the start already meets the tolerance. A warm start from an already relaxed
+    /// shape converges faster with continuation = false.
+    bool continuation = true;
+    /// s of the first stage, in (0, 1]. The first stage is never softer than needed to keep the
+    /// strain modest: its EA is at least 20 times the mean load per held knot.
+    double previewStiffnessScale = 1e-3;
+    double continuationFactor = 10; ///< stiffness ratio between stages, finite, > 1
+    std::optional<Wind> wind;       ///< a steady wind load; empty = none
+};
+
+struct RelaxResult {
+    bool converged = false;  ///< residual < tolerance at full stiffness
+    double residual = 0;     ///< at the final positions, full stiffness (what residual() returns)
+    std::int64_t steps = 0;  ///< integration steps, rejected ones included
+    std::int64_t forceEvaluations = 0; ///< passes of Eq. 3 over the whole system
+    double seconds = 0;      ///< wall time, s
+    std::string backend = "rk4";
+    /// "converged", "time limit", "step limit", "cancelled" or "diverged" (the step size
+    /// collapsed; the positions are the last good state, never NaN).
+    std::string stopReason;
+};
+
+/// Throws UserError naming the first invalid option, its value and what is allowed.
+void validate(const RelaxOptions& options);
+
+/// A relaxation backend. relax() moves the free knots of system in place, starting from the
+/// positions it has (a warm start), and returns how it went. On any stop the positions are
+/// finite and are the best state reached. Throws UserError for invalid options or system.
+class Relaxer {
+  public:
+    virtual ~Relaxer() = default;
+    virtual std::string_view name() const = 0;
+    [[nodiscard]] virtual RelaxResult relax(MassSpringSystem& system,
+                                            const RelaxOptions& options) = 0;
+};
+
+/// The overdamped RK4 integration of Eq. 7 with fictitious masses (dynamic relaxation's
+/// m_j = s * sum of kTension over the knot's bars), a step near RK4's stability limit from a
+/// Gershgorin bound, automatic step back-off on blow-up, and stiffness continuation.
+class Rk4Relaxer final : public Relaxer {
+  public:
+    std::string_view name() const override { return "rk4"; }
+    [[nodiscard]] RelaxResult relax(MassSpringSystem& system, const RelaxOptions& options) override;
+};
+
+/// Rk4Relaxer().relax(system, options).
+[[nodiscard]] RelaxResult relaxRk4(MassSpringSystem& system, const RelaxOptions& options = {});
+
+} // namespace netsculpt

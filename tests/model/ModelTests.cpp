@@ -1,0 +1,320 @@
+// The sculpture model and its compiled mass-spring system (DESIGN.md "Net piece", "How pieces
+// are joined"): counts, the staggering rule, Eq. 1-2 initial geometry, gears, seams, bad input.
+
+#include "TestSculptures.h"
+
+#include "model/Error.h"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <map>
+#include <numbers>
+#include <queue>
+#include <set>
+
+using namespace netsculpt;
+using namespace netsculpt::test;
+using Catch::Matchers::Contains;
+
+namespace {
+
+bool sameModel(const Sculpture& a, const Sculpture& b) {
+    if (a.rails.size() != b.rails.size() || a.pieces != b.pieces || a.seams != b.seams) return false;
+    for (const auto& [id, rail] : a.rails) {
+        auto it = b.rails.find(id);
+        if (it == b.rails.end() || it->second.name != rail.name || it->second.shape != rail.shape) return false;
+    }
+    return a.nextRailId == b.nextRailId && a.nextPieceId == b.nextPieceId && a.gravity == b.gravity;
+}
+
+bool everyKnotHasPathUp(const MassSpringSystem& sys) {
+    std::vector<std::vector<std::uint32_t>> adjacent(sys.knotCount());
+    for (std::size_t b = 0; b < sys.barCount(); ++b) {
+        adjacent[sys.barA[b]].push_back(sys.barB[b]);
+        adjacent[sys.barB[b]].push_back(sys.barA[b]);
+    }
+    std::vector<char> reached(sys.knotCount(), 0);
+    std::queue<std::uint32_t> todo;
+    for (std::uint32_t k = 0; k < sys.knotCount(); ++k)
+        if (sys.fixed[k]) {
+            reached[k] = 1;
+            todo.push(k);
+        }
+    while (!todo.empty()) {
+        const auto k = todo.front();
+        todo.pop();
+        for (auto n : adjacent[k])
+            if (!reached[n]) {
+                reached[n] = 1;
+                todo.push(n);
+            }
+    }
+    return std::all_of(reached.begin(), reached.end(), [](char c) { return c != 0; });
+}
+
+struct Tube {
+    Sculpture s;
+    RailId rail;
+    PieceId piece;
+};
+
+Tube tube(int columns, int rows, double radius = 2.0, double bar = 0.8) {
+    Tube t;
+    t.rail = edit(t.s, [&](Sculpture& s) { return addRail(s, "ring", polygonRail(columns, radius)); });
+    t.piece = edit(t.s, [&](Sculpture& s) {
+        return attachToRail(s, {t.rail, columns, 0, rows, bar, 0, false});
+    });
+    return t;
+}
+
+} // namespace
+
+TEST_CASE("knot and bar counts of closed and open pieces") {
+    Tube t = tube(12, 5);
+    auto c = compileSculpture(t.s);
+    CHECK(c.system.knotCount() == 60);
+    CHECK(c.system.barCount() == 2 * 12 * 4);
+    CHECK(std::count(c.system.fixed.begin(), c.system.fixed.end(), 1) == 12);
+
+    Sculpture s;
+    RailId line = edit(s, [](Sculpture& m) { return addRail(m, "line", lineRail({0, 0, 0}, {3, 0, 0})); });
+    PieceId sheet = edit(s, [&](Sculpture& m) { return attachToRail(m, {line, 7, 0, 4, 0.5, 0, false}); });
+    auto o = compileSculpture(s);
+    CHECK(o.system.knotCount() == 28);
+    CHECK(o.system.barCount() == 3 * (2 * 7 - 1));
+    CHECK_FALSE(s.piece(sheet).closed);
+    CHECK(everyKnotHasPathUp(o.system));
+}
+
+TEST_CASE("every bar follows the staggering rule; columns wrap only in closed pieces") {
+    for (bool closed : {true, false}) {
+        Sculpture s;
+        const int columns = 8, rows = 6;
+        RailId rail = edit(s, [&](Sculpture& m) {
+            return addRail(m, "r", closed ? polygonRail(columns, 1.5) : lineRail({0, 0, 0}, {3.5, 0, 0}));
+        });
+        edit(s, [&](Sculpture& m) { return attachToRail(m, {rail, columns, 0, rows, 0.9, 0, false}); });
+        auto c = compileSculpture(s);
+        const auto& sys = c.system;
+        std::vector<int> up(sys.knotCount(), 0), down(sys.knotCount(), 0);
+        for (std::size_t b = 0; b < sys.barCount(); ++b) {
+            KnotRef a = sys.refs[sys.refStart[sys.barA[b]]];
+            KnotRef d = sys.refs[sys.refStart[sys.barB[b]]];
+            if (a.row < d.row) std::swap(a, d); // a is the lower knot
+            REQUIRE(a.row == d.row + 1);
+            const int expected1 = a.row % 2 == 1 ? a.column : a.column - 1;
+            const int expected2 = a.row % 2 == 1 ? a.column + 1 : a.column;
+            const int parent = d.column;
+            const auto wrapped = [&](int x) { return closed ? (x + columns) % columns : x; };
+            CHECK((parent == wrapped(expected1) || parent == wrapped(expected2)));
+            ++up[sys.barA[b] == c.knotOf(a.piece, a.row, a.column) ? sys.barA[b] : sys.barB[b]];
+            ++down[sys.barA[b] == c.knotOf(a.piece, a.row, a.column) ? sys.barB[b] : sys.barA[b]];
+        }
+        for (int r = 0; r < rows; ++r)
+            for (int col = 0; col < columns; ++col) {
+                const auto k = c.knotOf(PieceId(1), r, col);
+                const bool edgeUp = !closed && ((r % 2 == 1 && col == columns - 1) || (r % 2 == 0 && col == 0));
+                CHECK(up[k] == (r == 0 ? 0 : (edgeUp ? 1 : 2)));
+                const bool edgeDown = !closed && r + 1 < rows &&
+                                      (((r + 1) % 2 == 1 && col == 0) || ((r + 1) % 2 == 0 && col == columns - 1));
+                CHECK(down[k] == (r == rows - 1 ? 0 : (edgeDown ? 1 : 2)));
+            }
+    }
+}
+
+TEST_CASE("initial geometry on a circular rail follows Eq. 1 and 2") {
+    const int n = 12;
+    const double radius = 2.0, l = 0.8;
+    Tube t = tube(n, 3, radius, l);
+    auto c = compileSculpture(t.s);
+    const double half = std::numbers::pi / n;
+    const double h1 = std::sqrt(l * l - std::pow(radius * std::sin(half), 2)); // s/2 = R sin(pi/n)
+    const double r1 = radius * std::cos(half);
+    const double h2 = std::sqrt(l * l - std::pow(r1 * std::sin(half), 2));
+    const double r2 = r1 * std::cos(half);
+    for (int col = 0; col < n; ++col) {
+        const Vec3 top = c.system.position[c.knotOf(t.piece, 0, col)];
+        CHECK(top.x == Approx(radius * std::cos(2 * half * col)).margin(1e-12));
+        CHECK(top.y == Approx(radius * std::sin(2 * half * col)).margin(1e-12));
+        const Vec3 p1 = c.system.position[c.knotOf(t.piece, 1, col)];
+        const double a1 = 2 * half * (col + 0.5);
+        CHECK(p1.x == Approx(r1 * std::cos(a1)).margin(1e-12));
+        CHECK(p1.y == Approx(r1 * std::sin(a1)).margin(1e-12));
+        CHECK(p1.z == Approx(-h1).margin(1e-12));
+        const Vec3 p2 = c.system.position[c.knotOf(t.piece, 2, col)];
+        CHECK(p2.x == Approx(r2 * std::cos(2 * half * col)).margin(1e-12));
+        CHECK(p2.y == Approx(r2 * std::sin(2 * half * col)).margin(1e-12));
+        CHECK(p2.z == Approx(-h1 - h2).margin(1e-12));
+    }
+}
+
+TEST_CASE("knot masses come from the material") {
+    Tube t = tube(12, 3, 2.0, 0.8);
+    auto c = compileSculpture(t.s);
+    const Material m = t.s.piece(t.piece).material;
+    // A middle-row knot has four bars of 0.8 m: knot mass + 1/2 * density * 3.2 m.
+    CHECK(c.system.mass[c.knotOf(t.piece, 1, 0)] == Approx(m.knotMass + 0.5 * m.linearDensity * 3.2));
+    CHECK(c.system.mass[c.knotOf(t.piece, 2, 0)] == Approx(m.knotMass + 0.5 * m.linearDensity * 1.6));
+    CHECK(c.system.kTension[0] == Approx(m.stiffness / 0.8));
+    CHECK(c.system.kCompression[0] == Approx(m.compressionRatio * m.stiffness / 0.8));
+}
+
+TEST_CASE("gear junctions share their knots") {
+    struct Case {
+        Gear gear;
+        int childColumns;
+        int newKnots; // gear-up knots between shared ones
+    };
+    const Case cases[] = {{{3, 1}, 36, 24}, {{2, 1}, 24, 12}, {{1, 1}, 12, 0}, {{1, 2}, 6, 0}, {{1, 3}, 4, 0}};
+    for (const Case& k : cases) {
+        Tube t = tube(12, 3);
+        PieceId child = edit(t.s, [&](Sculpture& m) { return attachToPiece(m, {t.piece, k.gear, 4, k.gear.den > 1 ? 1.5 : 0.6}); });
+        auto c = compileSculpture(t.s);
+        const Piece& q = t.s.piece(child);
+        INFO("gear " << toString(k.gear));
+        CHECK(q.columns == k.childColumns);
+        CHECK(q.closed);
+        const int shared = std::min(12, k.childColumns);
+        CHECK(c.system.knotCount() == std::size_t(36 + 4 * k.childColumns - shared));
+        CHECK(c.system.barCount() == std::size_t(2 * 12 * 2 + 2 * k.childColumns * 3 + 2 * k.newKnots));
+        for (int col = 0; col < k.childColumns; ++col) {
+            const auto childKnot = c.knotOf(child, 0, col);
+            if (k.gear.den > 1) {
+                CHECK(childKnot == c.knotOf(t.piece, 2, col * k.gear.den));
+            } else if (col % k.gear.num == 0) {
+                CHECK(childKnot == c.knotOf(t.piece, 2, col / k.gear.num));
+            } else {
+                const auto refs = c.system.refStart[childKnot + 1] - c.system.refStart[childKnot];
+                CHECK(refs == 1); // a new knot, not shared
+            }
+        }
+        CHECK(everyKnotHasPathUp(c.system));
+    }
+}
+
+TEST_CASE("a gear that does not divide is refused with the allowed gears") {
+    Tube t = tube(9, 2, 2.0, 1.0);
+    const Sculpture before = t.s;
+    REQUIRE_THROWS_WITH(edit(t.s, [&](Sculpture& m) { return attachToPiece(m, {t.piece, {1, 2}, 3, 0.3}); }),
+                        Contains("gear 1/2 does not divide a row of 9") && Contains("1/3"));
+    CHECK(sameModel(before, t.s));
+}
+
+namespace {
+
+/// Sorted (position, rest length) fingerprint of a compiled system, for "nothing changed".
+std::pair<std::vector<std::array<double, 3>>, std::vector<std::array<double, 7>>> fingerprint(const MassSpringSystem& sys) {
+    std::vector<std::array<double, 3>> knots;
+    for (const Vec3& p : sys.position) knots.push_back({p.x, p.y, p.z});
+    std::vector<std::array<double, 7>> bars;
+    for (std::size_t b = 0; b < sys.barCount(); ++b) {
+        Vec3 a = sys.position[sys.barA[b]], d = sys.position[sys.barB[b]];
+        if (std::tie(d.x, d.y, d.z) < std::tie(a.x, a.y, a.z)) std::swap(a, d);
+        bars.push_back({a.x, a.y, a.z, d.x, d.y, d.z, sys.restLength[b]});
+    }
+    std::sort(knots.begin(), knots.end());
+    std::sort(bars.begin(), bars.end());
+    return {knots, bars};
+}
+
+} // namespace
+
+TEST_CASE("a split changes no knot, bar or rest length") {
+    Tube t = tube(12, 5, 2.0, 1.0);
+    PieceId child = edit(t.s, [&](Sculpture& m) { return attachToPiece(m, {t.piece, {2, 1}, 3, 1.0}); });
+    const auto before = compileSculpture(t.s);
+    auto [a, b] = edit(t.s, [&](Sculpture& m) { return split(m, t.piece, 4); });
+    CHECK(a == t.piece);
+    CHECK(t.s.piece(a).columns == 5);
+    CHECK(t.s.piece(b).columns == 9);
+    CHECK_FALSE(t.s.piece(a).closed);
+    CHECK(t.s.piece(child).columns == 24); // still hangs from the same knots
+    const auto after = compileSculpture(t.s);
+    CHECK(after.system.knotCount() == before.system.knotCount());
+    CHECK(after.system.barCount() == before.system.barCount());
+    CHECK(fingerprint(after.system) == fingerprint(before.system));
+    // The seam: column 4 of a is column 0 of b, in every row; and b's last column is a's column 0.
+    for (int r = 0; r < 5; ++r) {
+        CHECK(after.knotOf(a, r, 4) == after.knotOf(b, r, 0));
+        CHECK(after.knotOf(b, r, 8) == after.knotOf(a, r, 0));
+    }
+    // Split again, with a bar-length gradient across the seam.
+    edit(t.s, [&](Sculpture& m) { setBarLength(m, a, 0, 1.1); return 0; });
+    const auto graded = compileSculpture(t.s);
+    auto [a2, c2] = edit(t.s, [&](Sculpture& m) { return split(m, a, 2); });
+    CHECK(a2 == a);
+    const auto resplit = compileSculpture(t.s);
+    CHECK(fingerprint(resplit.system) == fingerprint(graded.system));
+    CHECK(t.s.piece(c2).bar.at(0) == t.s.piece(a).bar.at(2));
+}
+
+TEST_CASE("bar length at a seam is shared and interpolated across each piece") {
+    Sculpture s;
+    RailId line = edit(s, [](Sculpture& m) { return addRail(m, "line", lineRail({0, 0, 0}, {4.5, 0, 0})); });
+    PieceId p = edit(s, [&](Sculpture& m) { return attachToRail(m, {line, 10, 0, 4, 0.5, 0, false}); });
+    auto [a, b] = edit(s, [&](Sculpture& m) { return split(m, p, 5); });
+    edit(s, [&](Sculpture& m) { setBarLength(m, a, 5, 0.7); return 0; });
+    CHECK(s.piece(a).bar.at(5) == 0.7);
+    CHECK(s.piece(b).bar.at(0) == 0.7);
+    CHECK(s.piece(a).bar.at(0) == 0.5);
+    CHECK(s.piece(a).bar.at(2) == Approx(0.5 + 0.2 * 2 / 5));
+    CHECK(s.piece(b).bar.at(4) == 0.5);
+}
+
+TEST_CASE("bad input is refused with a clear message and changes nothing") {
+    Tube t = tube(12, 4);
+    const Sculpture before = t.s;
+    const auto refused = [&](auto e, const std::string& needle) {
+        INFO(needle);
+        REQUIRE_THROWS_WITH(edit(t.s, e), Contains(needle));
+        CHECK(sameModel(before, t.s));
+    };
+    refused([&](Sculpture& m) { setRows(m, t.piece, 0); return 0; }, "got 0");
+    refused([&](Sculpture& m) { setRows(m, t.piece, -3); return 0; }, "got -3");
+    refused([&](Sculpture& m) { return attachToRail(m, {t.rail, 0, 0, 3, 0.5, 0, false}); }, "spacing");
+    refused([&](Sculpture& m) { return attachToRail(m, {t.rail, 2, 0, 3, 0.5, 0, false}); }, "got 2");
+    refused([&](Sculpture& m) { return attachToRail(m, {t.rail, 12, 0, 3, 0.4, 0, false}); },
+            "bar length 0.4 m at row 1");
+    refused([&](Sculpture& m) { return attachToRail(m, {t.rail, 12, 0, 3, 0.4, 0, false}); }, "m / 2 =");
+    refused([&](Sculpture& m) { setBarLength(m, t.piece, std::nullopt, -1); return 0; }, "got -1");
+    refused([&](Sculpture& m) { return attachToPiece(m, {PieceId(99), {1, 1}, 3, 0.5}); }, "piece 99");
+    refused([&](Sculpture& m) { return split(m, t.piece, 12); }, "got 12");
+    refused([&](Sculpture& m) { return split(m, t.piece, 0); }, "from 1 to 11");
+    refused([&](Sculpture& m) { removeRail(m, t.rail); return 0; }, "piece 1");
+    CurveSpec nan = polygonRail(5, 1.0);
+    nan.points[2].y = std::nan("");
+    refused([&](Sculpture& m) { return addRail(m, "bad", nan); }, "nan");
+    CurveSpec dot;
+    dot.points = {{1, 1, 1}, {1, 1, 1}};
+    refused([&](Sculpture& m) { return addRail(m, "dot", dot); }, "distinct");
+    CurveSpec spline;
+    spline.spline = true;
+    spline.degree = 3;
+    spline.points = {{0, 0, 0}, {1, 0, 0}};
+    refused([&](Sculpture& m) { return addRail(m, "short", spline); }, "2");
+    Material soft;
+    soft.stiffness = 0;
+    refused([&](Sculpture& m) { setMaterial(m, t.piece, soft); return 0; }, "stiffness");
+    refused([&](Sculpture& m) { setGear(m, t.piece, {2, 1}); return 0; }, "rail");
+    refused([&](Sculpture& m) { disconnect(m, t.piece); return 0; }, "not connected");
+    // A removed piece is named as removed.
+    edit(t.s, [&](Sculpture& m) { removePiece(m, t.piece); return 0; });
+    REQUIRE_THROWS_WITH(t.s.piece(t.piece), Contains("piece 1 was removed"));
+}
+
+TEST_CASE("a tube connected to a second rail has its last row fixed on that rail") {
+    Sculpture s;
+    RailId top = edit(s, [](Sculpture& m) { return addRail(m, "top", polygonRail(16, 2.0, 0)); });
+    RailId bottom = edit(s, [](Sculpture& m) { return addRail(m, "bottom", polygonRail(16, 1.0, -3)); });
+    PieceId p = edit(s, [&](Sculpture& m) { return attachToRail(m, {top, 16, 0, 8, 0.6, 0, false}); });
+    edit(s, [&](Sculpture& m) { connectToRail(m, p, bottom, 0.25, false); return 0; });
+    auto c = compileSculpture(s);
+    CHECK(std::count(c.system.fixed.begin(), c.system.fixed.end(), 1) == 32);
+    const Vec3 k0 = c.system.position[c.knotOf(p, 7, 0)];
+    CHECK(k0.x == Approx(0).margin(1e-12)); // t = 0.25 on the ring of radius 1: (0, 1, -3)
+    CHECK(k0.y == Approx(1.0));
+    CHECK(k0.z == Approx(-3.0));
+    CHECK(c.system.hold[c.knotOf(p, 7, 4)].rail == bottom);
+    CHECK(c.system.hold[c.knotOf(p, 7, 4)].t == Approx(0.5));
+}

@@ -1,0 +1,32 @@
+#pragma once
+// Small sculptures shared by the model tests, built through the model's edits.
+
+#include "model/Edits.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace netsculpt::test {
+
+/// A closed polyline rail: a regular polygon of `n` vertices, radius r, at height z.
+inline CurveSpec polygonRail(int n, double r, double z = 0) {
+    CurveSpec spec;
+    spec.closed = true;
+    for (int i = 0; i < n; ++i) {
+        const double a = 2 * std::numbers::pi * i / n;
+        spec.points.push_back({r * std::cos(a), r * std::sin(a), z});
+    }
+    return spec;
+}
+
+/// An open straight rail from a to b.
+inline CurveSpec lineRail(Vec3 a, Vec3 b) {
+    CurveSpec spec;
+    spec.points = {a, b};
+    return spec;
+}
+
+/// Applies one edit atomically (as the command layer does) and returns its result.
+template <typename Edit> auto edit(Sculpture& s, Edit&& e) { return applyAtomically(s, e).first; }
+
+} // namespace netsculpt::test
