@@ -56,11 +56,19 @@ constexpr double kPeriodTolerance = 1e-9; // closed-spline knot periodicity, rel
 
 // ---- messages ----
 
-[[noreturn]] void fail(const std::string& what) { throw UserError("rail: " + what); }
+[[noreturn]] void fail(const std::string& what) {
+    throw UserError("rail: " + what);
+}
 
-std::string num(double value) { return formatNumber(value); }
-std::string num(std::size_t value) { return std::to_string(value); }
-std::string num(int value) { return std::to_string(value); }
+std::string num(double value) {
+    return formatNumber(value);
+}
+std::string num(std::size_t value) {
+    return std::to_string(value);
+}
+std::string num(int value) {
+    return std::to_string(value);
+}
 std::string num(const Vec3& p) {
     std::string text = "("; // appended piecewise: GCC 12 warns falsely on "(" + std::string&&
     text += num(p.x) + ", " + num(p.y) + ", " + num(p.z) + ")";
@@ -109,7 +117,8 @@ void checkDegreeAndCount(const CurveSpec& spec) {
 }
 
 void checkWeights(const CurveSpec& spec) {
-    if (spec.weights.empty()) return;
+    if (spec.weights.empty())
+        return;
     if (spec.weights.size() != spec.points.size())
         fail(num(spec.weights.size()) + " weights given for " + num(spec.points.size()) +
              " control points; give one weight per control point, or none");
@@ -135,12 +144,14 @@ std::size_t wrappedCount(const CurveSpec& spec) {
 void checkKnotCount(const CurveSpec& spec) {
     const std::size_t wrapped = wrappedCount(spec);
     const std::size_t needed = wrapped + std::size_t(spec.degree) + 1;
-    if (spec.knots.size() == needed) return;
+    if (spec.knots.size() == needed)
+        return;
     std::string what = "knot vector has " + num(spec.knots.size()) + " values; a " +
                        (spec.closed ? "closed " : "") + "degree-" + num(spec.degree) +
                        " B-spline with " + num(spec.points.size()) + " control points needs " +
                        num(needed);
-    if (spec.closed) what += " (the knots of its " + num(wrapped) + " wrapped control points)";
+    if (spec.closed)
+        what += " (the knots of its " + num(wrapped) + " wrapped control points)";
     fail(what);
 }
 
@@ -156,7 +167,8 @@ void checkKnotValues(const std::vector<double>& knots) {
 }
 
 void checkKnotRange(const std::vector<double>& knots, std::size_t p, std::size_t wrapped) {
-    if (knots[wrapped] > knots[p]) return;
+    if (knots[wrapped] > knots[p])
+        return;
     fail("the knot vector's valid range [knots[" + num(p) + "], knots[" + num(wrapped) + "]] = [" +
          num(knots[p]) + ", " + num(knots[wrapped]) + "] is empty; it must have positive length");
 }
@@ -168,7 +180,8 @@ void checkKnotMultiplicity(const std::vector<double>& knots, std::size_t p, std:
     const double lo = knots[p], hi = knots[wrapped];
     for (std::size_t i = 0; i < knots.size();) {
         std::size_t j = i;
-        while (j < knots.size() && knots[j] == knots[i]) ++j;
+        while (j < knots.size() && knots[j] == knots[i])
+            ++j;
         const double v = knots[i];
         const bool inside = closed ? (v >= lo && v < hi) : (v > lo && v < hi);
         if (inside && j - i > p)
@@ -188,7 +201,8 @@ void checkKnotInfluence(const std::vector<double>& knots, std::size_t n, std::si
         return std::max(knots[i], lo) < std::min(knots[i + p + 1], hi);
     };
     for (std::size_t i = 0; i < n; ++i) {
-        if (acts(i) || (i + n < wrapped && acts(i + n))) continue;
+        if (acts(i) || (i + n < wrapped && acts(i + n)))
+            continue;
         fail("control point " + num(i) + " has no influence on the curve: its knots [knots[" +
              num(i) + "], knots[" + num(i + p + 1) + "]] = [" + num(knots[i]) + ", " +
              num(knots[i + p + 1]) + "] do not overlap the valid range [" + num(lo) + ", " +
@@ -204,8 +218,8 @@ void checkKnotPeriodic(const std::vector<double>& knots, std::size_t n, std::siz
         const double shift = knots[i + n] - knots[i];
         if (std::abs(shift - period) > kPeriodTolerance * period)
             fail("the knots of a closed B-spline must repeat with period " + num(period) +
-                 " (knots[" + num(n + p) + "] - knots[" + num(p) + "]), but knots[" +
-                 num(i + n) + "] - knots[" + num(i) + "] = " + num(shift));
+                 " (knots[" + num(n + p) + "] - knots[" + num(p) + "]), but knots[" + num(i + n) +
+                 "] - knots[" + num(i) + "] = " + num(shift));
     }
 }
 
@@ -214,15 +228,15 @@ void checkKnots(const CurveSpec& spec) {
     checkKnotValues(spec.knots);
     const std::size_t p = std::size_t(spec.degree), wrapped = wrappedCount(spec);
     checkKnotRange(spec.knots, p, wrapped);
-    if (spec.closed) checkKnotPeriodic(spec.knots, spec.points.size(), p);
+    if (spec.closed)
+        checkKnotPeriodic(spec.knots, spec.points.size(), p);
     checkKnotMultiplicity(spec.knots, p, wrapped, spec.closed);
     checkKnotInfluence(spec.knots, spec.points.size(), p, wrapped);
 }
 
 void checkLength(double length) {
     if (!std::isfinite(length))
-        fail("the curve's length is not finite (" + num(length) +
-             "); coordinates are too large");
+        fail("the curve's length is not finite (" + num(length) + "); coordinates are too large");
     if (!(length > 0))
         fail("the curve has zero length (" + num(length) +
              "); its points must be apart by a measurable distance");
@@ -235,7 +249,8 @@ void checkLength(double length) {
 std::vector<double> clampedUniformKnots(int n, int p) {
     std::vector<double> knots(std::size_t(p) + 1, 0.0);
     const int spans = n - p;
-    for (int i = 1; i < spans; ++i) knots.push_back(double(i) / spans);
+    for (int i = 1; i < spans; ++i)
+        knots.push_back(double(i) / spans);
     knots.insert(knots.end(), std::size_t(p) + 1, 1.0);
     return knots;
 }
@@ -243,7 +258,8 @@ std::vector<double> clampedUniformKnots(int n, int p) {
 /// Unit spacing over the n + p wrapped control points, shifted so the range is [0, n].
 std::vector<double> periodicUniformKnots(int n, int p) {
     std::vector<double> knots;
-    for (int i = 0; i <= n + 2 * p; ++i) knots.push_back(double(i - p));
+    for (int i = 0; i <= n + 2 * p; ++i)
+        knots.push_back(double(i - p));
     return knots;
 }
 
@@ -273,9 +289,10 @@ Homogeneous lerp(const Homogeneous& a, const Homogeneous& b, double alpha) {
 std::size_t findSpan(const CurveGeometry& g, double u) {
     const std::size_t p = std::size_t(g.degree), last = g.control.size() - 1;
     const auto begin = g.knots.begin();
-    std::size_t k = std::size_t(std::upper_bound(begin + long(p) + 1, begin + long(last) + 1, u) -
-                                begin) - 1;
-    while (k > p && !(g.knots[k] < g.knots[k + 1])) --k; // u at the end of the range
+    std::size_t k =
+        std::size_t(std::upper_bound(begin + long(p) + 1, begin + long(last) + 1, u) - begin) - 1;
+    while (k > p && !(g.knots[k] < g.knots[k + 1]))
+        --k; // u at the end of the range
     return k;
 }
 
@@ -294,10 +311,13 @@ void deBoorLevel(const CurveGeometry& g, std::size_t k, std::size_t r, double u,
 CurveSample evaluateSpline(const CurveGeometry& g, double u) {
     const std::size_t p = std::size_t(g.degree), k = findSpan(g, u);
     std::array<Homogeneous, kMaxDegree + 1> c;
-    for (std::size_t j = 0; j <= p; ++j) c[j] = g.control[k - p + j];
-    for (std::size_t r = 1; r < p; ++r) deBoorLevel(g, k, r, u, c);
+    for (std::size_t j = 0; j <= p; ++j)
+        c[j] = g.control[k - p + j];
+    for (std::size_t r = 1; r < p; ++r)
+        deBoorLevel(g, k, r, u, c);
     const double scale = double(p) / (g.knots[k + 1] - g.knots[k]);
-    const Homogeneous dA{(c[p].weighted - c[p - 1].weighted) * scale, (c[p].w - c[p - 1].w) * scale};
+    const Homogeneous dA{(c[p].weighted - c[p - 1].weighted) * scale,
+                         (c[p].w - c[p - 1].w) * scale};
     deBoorLevel(g, k, p, u, c);
     const Vec3 point = c[p].weighted / c[p].w;
     // Quotient rule for C = A / w.
@@ -380,10 +400,12 @@ void buildSplineTable(CurveGeometry& g) {
     g.tableP = {evaluateAt(g, uMin).point};
     for (std::size_t k = p; k < wrapped; ++k) {
         const double k0 = g.knots[k], k1 = g.knots[k + 1];
-        if (!(k0 < k1)) continue;
+        if (!(k0 < k1))
+            continue;
         for (int i = 0; i < kPiecesPerSpan; ++i) {
             const double a = k0 + (k1 - k0) * i / kPiecesPerSpan;
-            const double b = i + 1 == kPiecesPerSpan ? k1 : k0 + (k1 - k0) * (i + 1) / kPiecesPerSpan;
+            const double b =
+                i + 1 == kPiecesPerSpan ? k1 : k0 + (k1 - k0) * (i + 1) / kPiecesPerSpan;
             appendPiece(g, a, b, gaussLength(g, a, b), 0);
         }
     }
@@ -392,7 +414,8 @@ void buildSplineTable(CurveGeometry& g) {
 CurveGeometry splineGeometry(const CurveSpec& spec) {
     checkDegreeAndCount(spec);
     checkWeights(spec);
-    if (!spec.knots.empty()) checkKnots(spec);
+    if (!spec.knots.empty())
+        checkKnots(spec);
     checkDistinctControlPoints(spec);
     CurveGeometry g;
     g.degree = spec.degree;
@@ -409,13 +432,15 @@ CurveGeometry splineGeometry(const CurveSpec& spec) {
 std::vector<Vec3> polylineVertices(const CurveSpec& spec) {
     std::vector<Vec3> vertices;
     for (const Vec3& p : spec.points)
-        if (vertices.empty() || distance(vertices.back(), p) > 0) vertices.push_back(p);
+        if (vertices.empty() || distance(vertices.back(), p) > 0)
+            vertices.push_back(p);
     if (spec.closed && vertices.size() > 1 && !(distance(vertices.back(), vertices.front()) > 0))
         vertices.pop_back();
     if (vertices.size() < 2)
         fail("a polyline needs at least 2 distinct points, got " + num(vertices.size()) +
              " distinct among " + num(spec.points.size()) + " points");
-    if (spec.closed) vertices.push_back(vertices.front());
+    if (spec.closed)
+        vertices.push_back(vertices.front());
     return vertices;
 }
 
@@ -427,7 +452,8 @@ CurveGeometry polylineGeometry(const CurveSpec& spec) {
     for (std::size_t i = 0; i < g.vertices.size(); ++i) {
         g.tableU.push_back(double(i));
         g.tableP.push_back(g.vertices[i]);
-        if (i > 0) g.tableS.push_back(g.tableS.back() + distance(g.vertices[i - 1], g.vertices[i]));
+        if (i > 0)
+            g.tableS.push_back(g.tableS.back() + distance(g.vertices[i - 1], g.vertices[i]));
     }
     return g;
 }
@@ -460,12 +486,15 @@ double solveArcLength(const CurveGeometry& g, std::size_t j, double s) {
     const double tolerance = 1e-14 * g.tableS.back();
     for (int iteration = 0; iteration < 60; ++iteration) {
         const double error = s0 + gaussLength(g, g.tableU[j], u) - s;
-        if (std::abs(error) <= tolerance) break;
+        if (std::abs(error) <= tolerance)
+            break;
         (error > 0 ? hi : lo) = u;
         const double speed = evaluateAt(g, u).derivative.norm();
         double next = u - error / speed;
-        if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-        if (next == u) break;
+        if (!(next > lo && next < hi))
+            next = 0.5 * (lo + hi);
+        if (next == u)
+            break;
         u = next;
     }
     return u;
@@ -473,8 +502,10 @@ double solveArcLength(const CurveGeometry& g, std::size_t j, double s) {
 
 /// Curve parameter at arc length s from the start, s in [0, length].
 double parameterAtArcLength(const CurveGeometry& g, double s) {
-    if (s <= 0) return g.tableU.front();
-    if (s >= g.tableS.back()) return g.tableU.back();
+    if (s <= 0)
+        return g.tableU.front();
+    if (s >= g.tableS.back())
+        return g.tableU.back();
     const std::size_t j = tableIntervalOfLength(g, s);
     if (!g.isSpline())
         return g.tableU[j] + (s - g.tableS[j]) / (g.tableS[j + 1] - g.tableS[j]);
@@ -495,18 +526,23 @@ double nearestInPiece(const CurveGeometry& g, const Vec3& p, double a, double b)
         return distance(evaluateAt(g, a).point, p) <= distance(evaluateAt(g, b).point, p) ? a : b;
     int lastMoved = 0;
     double u = a;
-    for (int iteration = 0; iteration < 100 && b - a > 1e-15 * (std::abs(a) + std::abs(b)); ++iteration) {
+    for (int iteration = 0; iteration < 100 && b - a > 1e-15 * (std::abs(a) + std::abs(b));
+         ++iteration) {
         u = (a * fb - b * fa) / (fb - fa);
-        if (!(u > a && u < b)) u = 0.5 * (a + b);
+        if (!(u > a && u < b))
+            u = 0.5 * (a + b);
         const double fu = slope(u);
-        if (fu == 0) break;
+        if (fu == 0)
+            break;
         if (fu > 0) { // the root is left of u
             b = u, fb = fu;
-            if (lastMoved == -1) fa *= 0.5; // Illinois: stop the same end from sticking
+            if (lastMoved == -1)
+                fa *= 0.5; // Illinois: stop the same end from sticking
             lastMoved = -1;
         } else {
             a = u, fa = fu;
-            if (lastMoved == 1) fb *= 0.5;
+            if (lastMoved == 1)
+                fb *= 0.5;
             lastMoved = 1;
         }
     }
@@ -519,7 +555,8 @@ double nearestParameterOnPolyline(const CurveGeometry& g, const Vec3& p) {
         const Vec3 a = g.vertices[i], ab = g.vertices[i + 1] - a;
         const double f = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
         const double d = distance(a + ab * f, p);
-        if (d < bestDistance) bestDistance = d, bestU = double(i) + f;
+        if (d < bestDistance)
+            bestDistance = d, bestU = double(i) + f;
     }
     return bestU;
 }
@@ -528,15 +565,18 @@ double nearestParameterOnPolyline(const CurveGeometry& g, const Vec3& p) {
 // nearer point: no point of interval j is nearer than min(d_j, d_j+1) - (its arc length) / 2.
 double nearestParameterOnSpline(const CurveGeometry& g, const Vec3& p) {
     std::vector<double> d(g.tableP.size());
-    for (std::size_t j = 0; j < d.size(); ++j) d[j] = distance(g.tableP[j], p);
+    for (std::size_t j = 0; j < d.size(); ++j)
+        d[j] = distance(g.tableP[j], p);
     const std::size_t nearest = std::size_t(std::min_element(d.begin(), d.end()) - d.begin());
     double bestU = g.tableU[nearest], bestDistance = d[nearest];
     for (std::size_t j = 0; j + 1 < d.size(); ++j) {
         const double halfArc = 0.5 * (g.tableS[j + 1] - g.tableS[j]);
-        if (j != 0) continue;
+        if (std::min(d[j], d[j + 1]) - halfArc > bestDistance)
+            continue;
         const double u = nearestInPiece(g, p, g.tableU[j], g.tableU[j + 1]);
         const double du = distance(evaluateAt(g, u).point, p);
-        if (du < bestDistance) bestDistance = du, bestU = u;
+        if (du < bestDistance)
+            bestDistance = du, bestU = u;
     }
     return bestU;
 }
@@ -550,7 +590,8 @@ Vec3 chordDirection(const CurveGeometry& g, double u, double uMin, double uMax) 
         const double step = h * (uMax - uMin);
         const Vec3 chord = evaluateAt(g, std::min(u + step, uMax)).point -
                            evaluateAt(g, std::max(u - step, uMin)).point;
-        if (chord.norm() > 0) return chord / chord.norm();
+        if (chord.norm() > 0)
+            return chord / chord.norm();
     }
     assert(false && "a curve of positive length moves near every parameter");
     return {1, 0, 0};
@@ -581,7 +622,8 @@ Vec3 Curve::evaluate(double u) const {
 
 double Curve::normalizedPosition(double t) const {
     checkFinite(t, "rail position");
-    if (!closed()) return std::clamp(t, 0.0, 1.0);
+    if (!closed())
+        return std::clamp(t, 0.0, 1.0);
     const double wrapped = t - std::floor(t);
     return wrapped < 1 ? wrapped : 0.0; // a tiny negative t rounds up to 1, which is 0
 }
@@ -595,40 +637,46 @@ double Curve::parameterAt(double t) const {
 }
 
 double Curve::positionOfParameter(double u) const {
-    const double t = spec_.sampling == Sampling::Parameter
-                         ? (u - uMin_) / (uMax_ - uMin_)
-                         : arcLengthAt(*geometry_, u) / length_;
-    if (closed()) return t >= 1 ? 0.0 : std::max(t, 0.0);
+    const double t = spec_.sampling == Sampling::Parameter ? (u - uMin_) / (uMax_ - uMin_)
+                                                           : arcLengthAt(*geometry_, u) / length_;
+    if (closed())
+        return t >= 1 ? 0.0 : std::max(t, 0.0);
     return std::clamp(t, 0.0, 1.0);
 }
 
-Vec3 Curve::pointAt(double t) const { return evaluate(parameterAt(t)); }
+Vec3 Curve::pointAt(double t) const {
+    return evaluate(parameterAt(t));
+}
 
 Vec3 Curve::tangentAt(double t) const {
     const double u = parameterAt(t);
     const Vec3 derivative = evaluateAt(*geometry_, u).derivative;
     const double speed = derivative.norm();
     // Relative to the mean speed, so a numerically vanishing derivative does not give noise.
-    if (speed > 1e-12 * length_ / (uMax_ - uMin_)) return derivative / speed;
+    if (speed > 1e-12 * length_ / (uMax_ - uMin_))
+        return derivative / speed;
     return chordDirection(*geometry_, u, uMin_, uMax_);
 }
 
 double Curve::nearestPosition(const Vec3& p) const {
     assert(geometry_ && "use Curve::build");
     if (!p.isFinite())
-        fail("the point " + num(p) + " has a non-finite coordinate; coordinates must be finite numbers");
+        fail("the point " + num(p) +
+             " has a non-finite coordinate; coordinates must be finite numbers");
     const double u = geometry_->isSpline() ? nearestParameterOnSpline(*geometry_, p)
                                            : nearestParameterOnPolyline(*geometry_, p);
     return positionOfParameter(u);
 }
 
 std::vector<Vec3> Curve::samplePoints(double at, double d, int n) const {
-    if (n < 0) fail("sample count " + num(n) + " is negative; it must be >= 0");
+    if (n < 0)
+        fail("sample count " + num(n) + " is negative; it must be >= 0");
     checkFinite(at, "first rail position");
     checkFinite(d, "rail position step");
     std::vector<Vec3> points;
     points.reserve(std::size_t(n));
-    for (int i = 0; i < n; ++i) points.push_back(pointAt(at + i * d));
+    for (int i = 0; i < n; ++i)
+        points.push_back(pointAt(at + i * d));
     return points;
 }
 

@@ -11,8 +11,10 @@ namespace netsculpt {
 
 /// How rail positions t map to the curve.
 enum class Sampling {
-    ArcLength, ///< t = normalized arc length from the first point (default; what a net machine makes)
-    Parameter, ///< t = normalized curve parameter (equal parameter steps, as the paper describes)
+    /// t = normalized arc length from the first point (default; what a net machine makes)
+    ArcLength,
+    /// t = normalized curve parameter (equal parameter steps, as the paper describes)
+    Parameter,
 };
 
 /// What a user gives to describe a curve. Validated by Curve::build.

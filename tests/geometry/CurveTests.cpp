@@ -61,7 +61,8 @@ std::vector<double> chordLengths(const std::vector<Vec3>& points) {
 double relativeSpread(const std::vector<double>& values) {
     const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
     double mean = 0;
-    for (double v : values) mean += v / double(values.size());
+    for (double v : values)
+        mean += v / double(values.size());
     return (*hi - *lo) / mean;
 }
 
@@ -81,7 +82,8 @@ std::vector<Vec3> circleControl(int count) {
 
 std::vector<double> circleWeights(int count) {
     std::vector<double> weights;
-    for (int i = 0; i < count; ++i) weights.push_back(i % 2 == 0 ? 1.0 : std::sqrt(2.0) / 2);
+    for (int i = 0; i < count; ++i)
+        weights.push_back(i % 2 == 0 ? 1.0 : std::sqrt(2.0) / 2);
     return weights;
 }
 
@@ -91,13 +93,17 @@ Vec3 onCircle(double angle) {
 
 // A cubic whose control polygon is very uneven, so equal parameter steps are unequal in length.
 std::vector<Vec3> unevenControl() {
-    return {{0, 0, 0}, {0.3, 0.1, 0}, {0.6, 0.5, 0.1}, {4, 3, 0},
-            {8, -1, 0.5}, {12, 2, 0}, {12.5, 2.2, 0}};
+    return {{0, 0, 0},    {0.3, 0.1, 0}, {0.6, 0.5, 0.1}, {4, 3, 0},
+            {8, -1, 0.5}, {12, 2, 0},    {12.5, 2.2, 0}};
 }
 
 // Square control polygon: rotating by +90 degrees about z maps control point i to i + 1.
-std::vector<Vec3> squareControl() { return {{1, 1, 0}, {-1, 1, 0}, {-1, -1, 0}, {1, -1, 0}}; }
-Vec3 rotate90(const Vec3& p) { return {-p.y, p.x, p.z}; }
+std::vector<Vec3> squareControl() {
+    return {{1, 1, 0}, {-1, 1, 0}, {-1, -1, 0}, {1, -1, 0}};
+}
+Vec3 rotate90(const Vec3& p) {
+    return {-p.y, p.x, p.z};
+}
 
 } // namespace
 
@@ -131,9 +137,9 @@ TEST_CASE("open L-shaped polyline: length, positions, clamping", "[curve][polyli
 }
 
 TEST_CASE("polyline: consecutive duplicate points add no segment", "[curve][polyline]") {
-    const Curve curve = Curve::build(polyline(
-        {{0, 0, 0}, {0, 0, 0}, {3, 0, 0}, {3, 0, 0}, {3, 4, 0}, {3, 4, 0}}, false,
-        Sampling::Parameter));
+    const Curve curve =
+        Curve::build(polyline({{0, 0, 0}, {0, 0, 0}, {3, 0, 0}, {3, 0, 0}, {3, 4, 0}, {3, 4, 0}},
+                              false, Sampling::Parameter));
     CHECK(curve.length() == Approx(7.0).epsilon(1e-15));
     checkNear(curve.pointAt(0.5), {3, 0, 0}, 1e-15); // still two segments
     checkNear(curve.pointAt(0.25), {1.5, 0, 0}, 1e-15);
@@ -167,9 +173,8 @@ TEST_CASE("closed square polyline: length, wrap-around, samples, nearest", "[cur
     CHECK(square.nearestPosition({-1, -1, 0}) == 0.0); // the seam is 0, never 1
 
     // Repeating the first point at the end closes the same square.
-    const Curve explicitClose =
-        Curve::build(polyline({{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {0, 0, 0}}, true,
-                              Sampling::Parameter));
+    const Curve explicitClose = Curve::build(polyline(
+        {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {0, 0, 0}}, true, Sampling::Parameter));
     CHECK(explicitClose.length() == Approx(8.0).epsilon(1e-15));
     checkNear(explicitClose.pointAt(0.875), {0, 1, 0}, 1e-15); // 4 segments, not 5
 }
@@ -178,21 +183,22 @@ TEST_CASE("NURBS circle as an open clamped spline: radius, length, arc-length an
           "[curve][bspline]") {
     const std::vector<double> knots{0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1};
     for (Sampling sampling : {Sampling::ArcLength, Sampling::Parameter}) {
-        const Curve circle = Curve::build(
-            bspline(circleControl(9), 2, false, sampling, knots, circleWeights(9)));
+        const Curve circle =
+            Curve::build(bspline(circleControl(9), 2, false, sampling, knots, circleWeights(9)));
         CHECK(circle.length() == Approx(2 * pi * circleRadius).epsilon(1e-8).margin(0));
         for (double t = 0; t <= 1; t += 1.0 / 997)
             CHECK(std::abs(distance(circle.pointAt(t), circleCentre) - circleRadius) <= 1e-12);
     }
-    const Curve circle =
-        Curve::build(bspline(circleControl(9), 2, false, Sampling::ArcLength, knots, circleWeights(9)));
+    const Curve circle = Curve::build(
+        bspline(circleControl(9), 2, false, Sampling::ArcLength, knots, circleWeights(9)));
     // Arc length on a circle is angle times radius, so t = angle / 2 pi.
     for (double t = 0; t <= 1; t += 1.0 / 101) {
         checkNear(circle.pointAt(t), onCircle(2 * pi * t), 1e-10);
         checkNear(circle.tangentAt(t), {-std::sin(2 * pi * t), std::cos(2 * pi * t), 0}, 1e-10);
     }
     for (double angle : {0.3, 1.9, 3.3, 5.0}) {
-        const Vec3 outside = circleCentre + Vec3{std::cos(angle), std::sin(angle), 0} * 4 + Vec3{0, 0, 0.5};
+        const Vec3 outside =
+            circleCentre + Vec3{std::cos(angle), std::sin(angle), 0} * 4 + Vec3{0, 0, 0.5};
         CHECK(circle.nearestPosition(outside) == Approx(angle / (2 * pi)).epsilon(1e-10));
         const Vec3 inside = circleCentre + Vec3{std::cos(angle), std::sin(angle), 0} * 1;
         CHECK(circle.nearestPosition(inside) == Approx(angle / (2 * pi)).epsilon(1e-10));
@@ -224,7 +230,8 @@ TEST_CASE("arc-length sampling of a cubic is equally spaced; parameter sampling 
     const std::vector<double> chords = chordLengths(arc.samplePoints(0, 1.0 / fine, fine + 1));
     CHECK(relativeSpread(chords) < 1e-6);
     double chordSum = 0;
-    for (double c : chords) chordSum += c;
+    for (double c : chords)
+        chordSum += c;
     CHECK(chordSum == Approx(arc.length()).epsilon(1e-7));
 
     // Coarse sampling: each arc between consecutive samples, measured by 2m fine chords and
@@ -236,8 +243,10 @@ TEST_CASE("arc-length sampling of a cubic is equally spaced; parameter sampling 
     for (int i = 0; i < coarse; ++i) {
         const std::vector<Vec3> p = arc.samplePoints(i * d, d / (2 * m), 2 * m + 1);
         double fineSum = 0, halfSum = 0;
-        for (int k = 0; k < 2 * m; ++k) fineSum += distance(p[k], p[k + 1]);
-        for (int k = 0; k < 2 * m; k += 2) halfSum += distance(p[k], p[k + 2]);
+        for (int k = 0; k < 2 * m; ++k)
+            fineSum += distance(p[k], p[k + 1]);
+        for (int k = 0; k < 2 * m; k += 2)
+            halfSum += distance(p[k], p[k + 2]);
         arcs.push_back((4 * fineSum - halfSum) / 3);
     }
     CHECK(relativeSpread(arcs) < 1e-9);
@@ -287,8 +296,8 @@ TEST_CASE("B-spline special cases match closed forms", "[curve][bspline]") {
     }
     SECTION("a cubic Bezier (knots 0000 1111, any scale)") {
         const std::vector<Vec3> p{{0, 0, 0}, {1, 2, 0}, {3, 2, 1}, {4, 0, 0}};
-        const Curve bezier = Curve::build(
-            bspline(p, 3, false, Sampling::Parameter, {2, 2, 2, 2, 5, 5, 5, 5}));
+        const Curve bezier =
+            Curve::build(bspline(p, 3, false, Sampling::Parameter, {2, 2, 2, 2, 5, 5, 5, 5}));
         for (double t : {0.0, 0.3, 0.5, 0.8, 1.0}) {
             const double s = 1 - t;
             const Vec3 expected = p[0] * (s * s * s) + p[1] * (3 * s * s * t) +
@@ -306,14 +315,16 @@ TEST_CASE("B-spline special cases match closed forms", "[curve][bspline]") {
     }
     SECTION("equal weights other than 1 do not change the curve") {
         const Curve plain = Curve::build(bspline(unevenControl(), 3));
-        const Curve weighted = Curve::build(
-            bspline(unevenControl(), 3, false, Sampling::ArcLength, {}, std::vector<double>(7, 2.5)));
+        const Curve weighted = Curve::build(bspline(unevenControl(), 3, false, Sampling::ArcLength,
+                                                    {}, std::vector<double>(7, 2.5)));
         CHECK(weighted.length() == Approx(plain.length()).epsilon(1e-14));
-        for (double t = 0; t <= 1; t += 0.1) checkNear(weighted.pointAt(t), plain.pointAt(t), 1e-12);
+        for (double t = 0; t <= 1; t += 0.1)
+            checkNear(weighted.pointAt(t), plain.pointAt(t), 1e-12);
     }
     SECTION("degree 7 runs from first to last control point with equal arc spacing") {
         std::vector<Vec3> p;
-        for (int i = 0; i < 10; ++i) p.push_back({double(i), std::sin(i * 1.3) * 2, 0.1 * i * i});
+        for (int i = 0; i < 10; ++i)
+            p.push_back({double(i), std::sin(i * 1.3) * 2, 0.1 * i * i});
         const Curve curve = Curve::build(bspline(p, 7));
         checkNear(curve.pointAt(0), p.front(), 1e-14);
         checkNear(curve.pointAt(1), p.back(), 1e-13);
@@ -362,7 +373,8 @@ TEST_CASE("bad curve input throws UserError naming the value", "[curve][errors]"
 
     SECTION("too few distinct polyline points") {
         REQUIRE_THROWS_AS(Curve::build(polyline({})), UserError);
-        REQUIRE_THROWS_WITH(Curve::build(polyline({})), Contains("at least 2 distinct points, got 0"));
+        REQUIRE_THROWS_WITH(Curve::build(polyline({})),
+                            Contains("at least 2 distinct points, got 0"));
         REQUIRE_THROWS_WITH(Curve::build(polyline({a})), Contains("got 1 distinct among 1 points"));
         REQUIRE_THROWS_WITH(Curve::build(polyline({a, a, a})), Contains("got 1 distinct among 3"));
         REQUIRE_THROWS_WITH(Curve::build(polyline({a, {0, 0, 1e-320}}, true)),
@@ -379,15 +391,17 @@ TEST_CASE("bad curve input throws UserError naming the value", "[curve][errors]"
     SECTION("degree and control point count") {
         REQUIRE_THROWS_WITH(Curve::build(bspline(four, 0)), Contains("degree 0 is out of range"));
         REQUIRE_THROWS_WITH(Curve::build(bspline(four, 8)), Contains("degree 8 is out of range"));
-        REQUIRE_THROWS_WITH(Curve::build(bspline({a, {1, 0, 0}}, 3)),
-                            Contains("a B-spline of degree 3 needs at least 4 control points, got 2"));
+        REQUIRE_THROWS_WITH(
+            Curve::build(bspline({a, {1, 0, 0}}, 3)),
+            Contains("a B-spline of degree 3 needs at least 4 control points, got 2"));
         REQUIRE_THROWS_WITH(Curve::build(bspline({a, {1, 0, 0}, {1, 1, 0}}, 3, true)),
                             Contains("needs at least 4 control points, got 3"));
     }
     SECTION("knot vectors") {
         REQUIRE_THROWS_WITH(
             Curve::build(bspline(five, 3, false, Sampling::ArcLength, {0, 0, 0, 0, 1, 1, 1})),
-            Contains("knot vector has 7 values; a degree-3 B-spline with 5 control points needs 9"));
+            Contains(
+                "knot vector has 7 values; a degree-3 B-spline with 5 control points needs 9"));
         REQUIRE_THROWS_WITH(
             Curve::build(bspline(five, 3, true, Sampling::ArcLength, {0, 1, 2, 3, 4, 5, 6, 7, 8})),
             Contains("needs 12"));
@@ -401,13 +415,13 @@ TEST_CASE("bad curve input throws UserError naming the value", "[curve][errors]"
         REQUIRE_THROWS_WITH(
             Curve::build(bspline({a, {1, 0, 0}}, 1, false, Sampling::ArcLength, {0, 1, 1, 2})),
             Contains("= [1, 1] is empty"));
-        REQUIRE_THROWS_WITH(
-            Curve::build(bspline(six, 2, false, Sampling::ArcLength, {0, 0, 0, 0.5, 0.5, 0.5, 1, 1, 1})),
-            Contains("knot value 0.5 is repeated 3 times"));
+        REQUIRE_THROWS_WITH(Curve::build(bspline(six, 2, false, Sampling::ArcLength,
+                                                 {0, 0, 0, 0.5, 0.5, 0.5, 1, 1, 1})),
+                            Contains("knot value 0.5 is repeated 3 times"));
         // The range [0, 0.5] ends before control points 3 and 4 begin to count.
-        REQUIRE_THROWS_WITH(
-            Curve::build(bspline(five, 2, false, Sampling::ArcLength, {0, 0, 0, 0.5, 0.5, 0.5, 1, 1})),
-            Contains("control point 3 has no influence"));
+        REQUIRE_THROWS_WITH(Curve::build(bspline(five, 2, false, Sampling::ArcLength,
+                                                 {0, 0, 0, 0.5, 0.5, 0.5, 1, 1})),
+                            Contains("control point 3 has no influence"));
         REQUIRE_THROWS_WITH(
             Curve::build(bspline(four, 2, true, Sampling::ArcLength, {0, 1, 2, 3, 4, 5, 6, 7, 9})),
             Contains("knots[8] - knots[4] = 5"));
@@ -430,9 +444,8 @@ TEST_CASE("bad curve input throws UserError naming the value", "[curve][errors]"
         REQUIRE_THROWS_WITH(Curve::build(bspline({p, p, p, p}, 3)),
                             Contains("all 4 control points are equal (1, 2, 3)"));
         // Distinct, but too close for their distance to be represented: zero length.
-        REQUIRE_THROWS_WITH(
-            Curve::build(bspline({a, {1e-200, 0, 0}, {0, 1e-200, 0}, a}, 3)),
-            Contains("zero length"));
+        REQUIRE_THROWS_WITH(Curve::build(bspline({a, {1e-200, 0, 0}, {0, 1e-200, 0}, a}, 3)),
+                            Contains("zero length"));
         REQUIRE_THROWS_WITH(Curve::build(polyline({{-1e308, 0, 0}, {1e308, 0, 0}})),
                             Contains("length is not finite (inf)"));
     }
