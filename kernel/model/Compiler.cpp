@@ -328,14 +328,20 @@ CompiledSculpture compileSculpture(const Sculpture& s) { return Builder(s).build
 
 std::size_t carryPositions(const CompiledSculpture& previous, CompiledSculpture& next) {
     MassSpringSystem& sys = next.system;
+    const std::vector<Vec3> initial = sys.position;
     std::size_t carried = 0;
     for (std::size_t k = 0; k < sys.knotCount(); ++k) {
         if (sys.fixed[k]) continue;
         const KnotRef& ref = sys.refs[sys.refStart[k]];
-        auto it = previous.pieces.find(ref.piece);
-        if (it == previous.pieces.end() || ref.row >= it->second.rows || ref.column >= it->second.columns) continue;
-        if (it->second.rows == 0) continue;
-        sys.position[k] = previous.system.position[it->second.at(ref.row, ref.column)];
+        auto old = previous.pieces.find(ref.piece);
+        auto now = next.pieces.find(ref.piece);
+        if (old == previous.pieces.end() || old->second.columns != now->second.columns) continue;
+        // A knot that existed keeps its relaxed position; a knot of a new row below moves with
+        // the last old row's knot of its column, so that added rows start near the hung shape.
+        const int row = std::min(ref.row, old->second.rows - 1);
+        const Vec3 relaxed = previous.system.position[old->second.at(row, ref.column)];
+        const Vec3 start = initial[now->second.at(row, ref.column)];
+        sys.position[k] = row == ref.row ? relaxed : initial[k] + (relaxed - start);
         ++carried;
     }
     return carried;

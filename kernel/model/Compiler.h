@@ -33,8 +33,9 @@ CompiledSculpture compileSculpture(const Sculpture& s);
 /// Rail position t of column c of a rail edge.
 double railPosition(const RailEdge& edge, int column);
 
-/// Copies positions of knots that stand for the same (piece, row, column) from `previous` into
-/// `next`'s free knots (a warm start after an edit). Returns how many knots were carried over.
+/// A warm start after an edit: free knots of `next` that stand for the same (piece, row, column)
+/// as in `previous` take its (relaxed) position, for pieces whose column count is unchanged;
+/// knots of rows added below move with the last old row. Returns how many knots were carried.
 std::size_t carryPositions(const CompiledSculpture& previous, CompiledSculpture& next);
 
 } // namespace netsculpt

@@ -308,6 +308,7 @@ void renamePiece(Sculpture& s, PieceId id, const std::string& name) {
 }
 
 void removePiece(Sculpture& s, PieceId id) {
+    (void)s.piece(id); // an unknown or removed id is an error, not a no-op
     const auto doomed = s.subtreeOf(id);
     for (PieceId d : doomed) s.pieces.erase(d);
     std::erase_if(s.seams, [&](const Seam& seam) {
@@ -318,7 +319,8 @@ void removePiece(Sculpture& s, PieceId id) {
 
 void setGravity(Sculpture& s, const Vec3& gravity) {
     if (!gravity.isFinite() || gravity.squaredNorm() == 0)
-        throw UserError("gravity must be a finite, non-zero vector");
+        throw UserError("gravity must be a finite, non-zero vector, got (" + formatNumber(gravity.x) + ", " +
+                        formatNumber(gravity.y) + ", " + formatNumber(gravity.z) + ") m/s^2");
     s.gravity = gravity;
 }
 

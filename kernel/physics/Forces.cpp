@@ -12,7 +12,9 @@ namespace netsculpt {
 
 namespace {
 
-bool positiveFinite(double value) { return std::isfinite(value) && value > 0; }
+bool positiveFinite(double value) {
+    return std::isfinite(value) && value > 0;
+}
 
 [[noreturn]] void badSystem(const std::string& what) {
     throw UserError("mass-spring system: " + what);
@@ -33,8 +35,8 @@ void checkSizes(const MassSpringSystem& system) {
     check(system.kCompression.size(), bars, "kCompression");
     if (knots >= std::numeric_limits<std::uint32_t>::max() / 2 ||
         bars >= std::numeric_limits<std::uint32_t>::max() / 2)
-        badSystem("too many knots or bars (" + std::to_string(knots) + ", " +
-                  std::to_string(bars) + ")");
+        badSystem("too many knots or bars (" + std::to_string(knots) + ", " + std::to_string(bars) +
+                  ")");
 }
 
 } // namespace
@@ -108,7 +110,7 @@ ForceField::ForceField(const MassSpringSystem& system) {
         adjacency_[next[bars_[b].b]] = 2 * bar + 1;
         adjacentBars_[next[bars_[b].b]++] = bar;
     }
-    endForce_.resize(2 * bars);
+    barForce_.resize(bars);
 }
 
 void ForceField::setLoad(const std::optional<Wind>& wind, double stiffnessScale) {
@@ -120,12 +122,14 @@ void ForceField::setLoad(const std::optional<Wind>& wind, double stiffnessScale)
         windDirection_ = validatedWindDirection(*wind);
         windPressure_ = wind->pressure;
         hasWind_ = windPressure_ > 0;
+        barWind_.resize(hasWind_ ? barCount() : 0);
     }
     scale_ = stiffnessScale;
 }
 
 std::span<const std::uint32_t> ForceField::barsOfKnot(std::size_t j) const {
-    return {adjacentBars_.data() + adjacencyStart_[j], adjacentBars_.data() + adjacencyStart_[j + 1]};
+    return {adjacentBars_.data() + adjacencyStart_[j],
+            adjacentBars_.data() + adjacencyStart_[j + 1]};
 }
 
 void ForceField::computeBars(const Vec3* positions, std::size_t begin, std::size_t end,
@@ -141,27 +145,22 @@ void ForceField::computeBars(const Vec3* positions, std::size_t begin, std::size
         if (tension)
             tension[b] = t;
         // Force on end a: t along the unit vector from a to b (Eq. 3); end b gets the opposite.
-        Vec3 onA = length > 0 ? d * (t / length) : Vec3{};
-        Vec3 onB = -onA;
-        if (hasWind_ && length > 0) {
+        barForce_[b] = length > 0 ? d * (t / length) : Vec3{};
+        if (hasWind_) {
             // q L times the part of the wind direction normal to the bar, half to each end.
             const Vec3 normal = windDirection_ - d * (windDirection_.dot(d) / (length * length));
-            const Vec3 half = normal * (0.5 * windPressure_ * length);
-            onA += half;
-            onB += half;
+            barWind_[b] = length > 0 ? normal * (0.5 * windPressure_ * length) : Vec3{};
         }
-        endForce_[2 * b] = onA;
-        endForce_[2 * b + 1] = onB;
     }
 }
 
 void ForceField::evaluate(std::span<const Vec3> positions, std::span<Vec3> force,
                           ThreadPool* pool) {
     assert(positions.size() == knotCount() && force.size() == knotCount());
-    auto bars = [&](std::size_t begin, std::size_t end, int) {
+    auto bars = [&](std::size_t begin, std::size_t end, std::size_t) {
         computeBars(positions.data(), begin, end);
     };
-    auto knots = [&](std::size_t begin, std::size_t end, int) {
+    auto knots = [&](std::size_t begin, std::size_t end, std::size_t) {
         for (std::size_t j = begin; j < end; ++j)
             force[j] = knotForce(j);
     };
@@ -190,8 +189,7 @@ std::vector<Vec3> knotForces(const MassSpringSystem& system, const std::optional
     return force;
 }
 
-std::vector<double> knotResiduals(const MassSpringSystem& system,
-                                  const std::optional<Wind>& wind) {
+std::vector<double> knotResiduals(const MassSpringSystem& system, const std::optional<Wind>& wind) {
     ForceField field(system);
     field.setLoad(wind, 1.0);
     std::vector<Vec3> force(system.knotCount());

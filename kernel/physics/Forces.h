@@ -8,9 +8,11 @@
 // stiffness scale (1 = the material; continuation uses s < 1). A bar of zero current length
 // has no direction and exerts no force.
 //
-// Determinism: every bar's end forces are computed on their own, then each knot sums its bars
-// in a fixed order (a knot -> bar table built once). The result is bit-identical whatever the
-// number of threads.
+// An evaluation has two passes over flat arrays: each bar's spring force (and wind load) is
+// computed once into a per-bar array (phase 1), then each knot sums its bars (phase 2) in a
+// fixed order, from a knot -> bar table built once. Each pass can be shared out among threads;
+// nothing depends on how, so the result is bit-identical whatever the number of threads. The
+// two ends of a bar get exactly opposite spring forces (negation is exact).
 
 #include "geometry/Vec3.h"
 #include "physics/MassSpringSystem.h"
@@ -43,7 +45,7 @@ class ForceField {
     void setLoad(const std::optional<Wind>& wind, double stiffnessScale = 1.0);
     double stiffnessScale() const { return scale_; }
 
-    /// Phase 1 of an evaluation, bars [begin, end): each bar's force on its two ends (spring of
+    /// Phase 1 of an evaluation, bars [begin, end): each bar's force on its ends (spring of
     /// Eq. 3 and wind). tension, if not null, receives s k (l - l_eq) per bar in N (< 0:
     /// compression). positions has knotCount() entries.
     void computeBars(const Vec3* positions, std::size_t begin, std::size_t end,
@@ -52,8 +54,14 @@ class ForceField {
     /// Phase 2, after phase 1 for all bars: the total force F_j on knot j in N (Eq. 3).
     Vec3 knotForce(std::size_t j) const {
         Vec3 force = weight_[j];
-        for (std::uint32_t k = adjacencyStart_[j], e = adjacencyStart_[j + 1]; k < e; ++k)
-            force += endForce_[adjacency_[k]];
+        for (std::uint32_t k = adjacencyStart_[j], e = adjacencyStart_[j + 1]; k < e; ++k) {
+            const std::uint32_t entry = adjacency_[k];
+            const double sign = 1.0 - 2.0 * static_cast<double>(entry & 1u); // end a: +1, b: -1
+            force += barForce_[entry >> 1] * sign;
+        }
+        if (hasWind_)
+            for (std::uint32_t k = adjacencyStart_[j], e = adjacencyStart_[j + 1]; k < e; ++k)
+                force += barWind_[adjacency_[k] >> 1];
         return force;
     }
 
@@ -93,10 +101,11 @@ class ForceField {
     std::vector<std::uint32_t> adjacencyStart_; ///< knotCount()+1 offsets into adjacency_
     std::vector<std::uint32_t> adjacency_;      ///< 2 b + (0 at end a, 1 at end b), by knot
     std::vector<std::uint32_t> adjacentBars_;   ///< b, same order (for barsOfKnot)
-    std::vector<Vec3> endForce_;                ///< [2 b + end]: force of bar b on that end, N
+    std::vector<Vec3> barForce_; ///< spring force of bar b on its end a (end b: the opposite), N
+    std::vector<Vec3> barWind_;  ///< wind load of bar b on each of its ends, N (if wind)
     double scale_ = 1.0;
     bool hasWind_ = false;
-    Vec3 windDirection_;   ///< unit
+    Vec3 windDirection_;      ///< unit
     double windPressure_ = 0; ///< N/m
 };
 

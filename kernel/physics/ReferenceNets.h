@@ -13,10 +13,10 @@ namespace netsculpt {
 
 /// The rope and knots of a net (DESIGN.md "Physics").
 struct NetMaterial {
-    double stiffness = 2e5;       ///< EA, N; k_s = EA / l_eq
+    double stiffness = 2e5;         ///< EA, N; k_s = EA / l_eq
     double compressionRatio = 0.01; ///< k_c / k_s, >= 0
-    double knotMass = 0.002;      ///< kg per knot
-    double linearDensity = 0.006; ///< kg per metre of rope
+    double knotMass = 0.002;        ///< kg per knot
+    double linearDensity = 0.006;   ///< kg per metre of rope
 };
 
 /// A chain of `links` bars from `from` to `to` (both ends fixed), knots starting on the

@@ -11,8 +11,6 @@
 #include <memory>
 #include <string>
 #include <vector>
-#include <cstdio>
-#include <cstdlib>
 
 namespace netsculpt {
 
@@ -23,10 +21,14 @@ constexpr double kRk4StableReach = 2.6;
 // Soft continuation stages stop at this residual (or the tolerance if looser): they only have to
 // bring the shape close to the next stage's.
 constexpr double kStageTolerance = 1e-3;
-// Back-off: a state is kept as the "last good" one every kCheckpointSteps steps; a residual
-// over kBlowUpFactor times the last good one, or any non-finite number, restores the last good
-// state and halves the step. After kRecoverSteps good steps the step grows back by 1.5 up to
-// the stable one. The step never shrinks below kMinStepFraction of the stable one ("diverged").
+// Back-off. Every kCheckpointSteps steps the state becomes the "last good" one; a residual over
+// kBlowUpFactor times the last good one, or any non-finite number, restores the last good state
+// and halves the step. The Gershgorin step is stable for the linearized system unless a bar is
+// crushed to about compressionRatio of its length, so this is for violent states. (A residual
+// that merely grows is not a blow-up: a net leaving an unstable equilibrium, e.g. buckling out
+// of plane, speeds up before it settles.) After kRecoverSteps good steps the step grows back
+// by 1.5, up to the stable one. The step never shrinks below kMinStepFraction of the stable
+// one ("diverged").
 constexpr std::int64_t kCheckpointSteps = 32;
 constexpr double kBlowUpFactor = 1e3;
 constexpr std::int64_t kRecoverSteps = 256;
@@ -39,9 +41,11 @@ constexpr std::size_t kAutoBarsPerThread = 4096;
 
 using Clock = std::chrono::steady_clock;
 
-bool positiveFinite(double value) { return std::isfinite(value) && value > 0; }
+bool positiveFinite(double value) {
+    return std::isfinite(value) && value > 0;
+}
 
-/// Per-thread reduction slot on its own cache line.
+/// Per-chunk reduction slot on its own cache line.
 struct alignas(64) Partial {
     double maxResidual = 0;
     bool finite = true;
@@ -67,7 +71,7 @@ class Rk4Run {
         }
         if (threads > 1)
             pool_ = std::make_unique<ThreadPool>(threads);
-        partials_.resize(static_cast<std::size_t>(threads));
+        partials_.resize(pool_ ? pool_->chunkCount(knots) : 1); // one per chunk of the knot pass
 
         x_ = system.position;
         stagePositions_ = x_;
@@ -99,7 +103,7 @@ class Rk4Run {
         if (pool_)
             pool_->parallelFor(count, body);
         else
-            body(std::size_t{0}, count, 0);
+            body(std::size_t{0}, count, std::size_t{0});
     }
 
     double gershgorinBound() const;
@@ -108,9 +112,7 @@ class Rk4Run {
     bool rk4Stage(int stage, double step);
     double stageResidual() const;
     bool stageFinite() const;
-    double seconds() const {
-        return std::chrono::duration<double>(Clock::now() - start_).count();
-    }
+    double seconds() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
 
     MassSpringSystem& system_;
     const RelaxOptions& options_;
@@ -123,7 +125,7 @@ class Rk4Run {
     std::vector<Vec3> checkpoint_;     ///< last good state, m
     std::vector<double> mobility_;     ///< 1 / fictitious mass at scale 1 (0 for fixed knots)
     std::size_t freeCount_ = 0, fixedCount_ = 0;
-    double stableStep_ = 1;            ///< dimensionless (mobility is per unit stiffness)
+    double stableStep_ = 1; ///< dimensionless (mobility is per unit stiffness)
     Clock::time_point start_;
     std::int64_t evaluations_ = 0;
 };
@@ -137,7 +139,8 @@ double Rk4Run::gershgorinBound() const {
             continue;
         double row = 0;
         for (std::uint32_t b : field_.barsOfKnot(j)) {
-            const std::uint32_t other = field_.barEndA(b) == j ? field_.barEndB(b) : field_.barEndA(b);
+            const std::uint32_t other =
+                field_.barEndA(b) == j ? field_.barEndB(b) : field_.barEndA(b);
             row += field_.barTensionStiffness(b) * (field_.isFixed(other) ? 1.0 : 2.0);
         }
         bound = std::max(bound, row * mobility_[j]);
@@ -150,8 +153,10 @@ double Rk4Run::firstStageScale() const {
         return 1.0;
     double minAxialStiffness = std::numeric_limits<double>::infinity(); // EA, N
     for (std::size_t b = 0; b < field_.barCount(); ++b)
-        minAxialStiffness = std::min(minAxialStiffness, system_.kTension[b] * system_.restLength[b]);
-    const double meanHeldLoad = totalWeight(system_) / static_cast<double>(std::max<std::size_t>(fixedCount_, 1));
+        minAxialStiffness =
+            std::min(minAxialStiffness, system_.kTension[b] * system_.restLength[b]);
+    const double meanHeldLoad =
+        totalWeight(system_) / static_cast<double>(std::max<std::size_t>(fixedCount_, 1));
     const double floor = kPreviewLoadFactor * meanHeldLoad / minAxialStiffness;
     return std::min(1.0, std::max(options_.previewStiffnessScale, floor));
 }
@@ -164,18 +169,19 @@ double Rk4Run::stageResidual() const {
 }
 
 bool Rk4Run::stageFinite() const {
-    return std::all_of(partials_.begin(), partials_.end(), [](const Partial& p) { return p.finite; });
+    return std::all_of(partials_.begin(), partials_.end(),
+                       [](const Partial& p) { return p.finite; });
 }
 
 /// The residual at the current scale for positions (one evaluation; no state change).
 double Rk4Run::evaluateResidual(const Vec3* positions) {
     for (Partial& p : partials_)
         p = Partial{};
-    forRange(field_.barCount(), [&](std::size_t b, std::size_t e, int) {
+    forRange(field_.barCount(), [&](std::size_t b, std::size_t e, std::size_t) {
         field_.computeBars(positions, b, e);
     });
-    forRange(field_.knotCount(), [&](std::size_t b, std::size_t e, int worker) {
-        Partial& partial = partials_[static_cast<std::size_t>(worker)];
+    forRange(field_.knotCount(), [&](std::size_t b, std::size_t e, std::size_t chunk) {
+        Partial& partial = partials_[chunk];
         for (std::size_t j = b; j < e; ++j) {
             if (field_.isFixed(j))
                 continue;
@@ -195,11 +201,10 @@ bool Rk4Run::rk4Stage(int stage, double step) {
     for (Partial& p : partials_)
         p = Partial{};
     const Vec3* at = stage == 0 ? x_.data() : stagePositions_.data();
-    forRange(field_.barCount(), [&](std::size_t b, std::size_t e, int) {
-        field_.computeBars(at, b, e);
-    });
-    forRange(field_.knotCount(), [&](std::size_t begin, std::size_t end, int worker) {
-        Partial& partial = partials_[static_cast<std::size_t>(worker)];
+    forRange(field_.barCount(),
+             [&](std::size_t b, std::size_t e, std::size_t) { field_.computeBars(at, b, e); });
+    forRange(field_.knotCount(), [&](std::size_t begin, std::size_t end, std::size_t chunk) {
+        Partial& partial = partials_[chunk];
         for (std::size_t j = begin; j < end; ++j) {
             if (field_.isFixed(j))
                 continue;
@@ -257,9 +262,6 @@ RelaxResult Rk4Run::run() {
         }
     }
 
-    std::vector<Vec3> previousStage;
-    double gStageTol = getenv("STAGETOL") ? atof(getenv("STAGETOL")) : kStageTolerance;
-    bool gPredict = getenv("PREDICT") != nullptr;
     double stepFraction = 1.0; // of the stable step, after back-offs
     double checkpointResidual = std::numeric_limits<double>::infinity();
     std::int64_t sinceCheckpoint = 0, sinceBackOff = 0;
@@ -277,15 +279,26 @@ RelaxResult Rk4Run::run() {
         if (scale == 1.0 && residualNow > 0 && std::isfinite(residualNow)) {
             const double logResidual = std::log(residualNow);
             if (previousProgressSeconds >= 0 && now > previousProgressSeconds) {
-                const double rate = (previousLogResidual - logResidual) / (now - previousProgressSeconds);
+                const double rate =
+                    (previousLogResidual - logResidual) / (now - previousProgressSeconds);
                 if (rate > 0)
-                    progress.estimatedSecondsLeft = std::max(0.0, (logResidual - std::log(tolerance)) / rate);
+                    progress.estimatedSecondsLeft =
+                        std::max(0.0, (logResidual - std::log(tolerance)) / rate);
             }
             previousLogResidual = logResidual;
             previousProgressSeconds = now;
         }
         if (options_.progress)
             options_.progress(progress);
+    };
+
+    // Back to the last good state with half the step ("diverged" when the step is too small).
+    auto backOff = [&] {
+        x_ = checkpoint_;
+        stepFraction *= 0.5;
+        sinceBackOff = 0;
+        if (stepFraction < kMinStepFraction)
+            stopReason = "diverged";
     };
 
     if (freeCount_ == 0)
@@ -296,14 +309,7 @@ RelaxResult Rk4Run::run() {
         r = stageResidual();
 
         if (!finite || r > kBlowUpFactor * checkpointResidual) {
-            // Blow-up: back to the last good state with half the step.
-            x_ = checkpoint_;
-            stepFraction *= 0.5;
-            sinceBackOff = 0;
-            if (stepFraction < kMinStepFraction) {
-                stopReason = "diverged";
-                break;
-            }
+            backOff();
             continue;
         }
         if (sinceCheckpoint == 0 || sinceCheckpoint >= kCheckpointSteps) {
@@ -312,20 +318,12 @@ RelaxResult Rk4Run::run() {
             sinceCheckpoint = 0;
         }
 
-        if (r < std::max(tolerance, scale < 1.0 ? gStageTol : 0.0)) {
+        if (r < std::max(tolerance, scale < 1.0 ? kStageTolerance : 0.0)) {
             if (scale == 1.0) {
                 stopReason = "converged";
                 break;
             }
             // Next continuation stage: stiffen and measure again from the same positions.
-            if (gPredict && !previousStage.empty()) {
-                for (std::size_t j = 0; j < x_.size(); ++j) {
-                    const Vec3 cur = x_[j];
-                    x_[j] += (x_[j] - previousStage[j]) * (1.0 / stageFactor);
-                    previousStage[j] = cur;
-                }
-            } else previousStage = x_;
-            fprintf(stderr, "stage %g done at step %lld t=%.3f\n", scale, (long long)steps, seconds());
             scale = scale * stageFactor > 0.999999 ? 1.0 : scale * stageFactor;
             field_.setLoad(options_.wind, scale);
             sinceCheckpoint = 0;
@@ -347,17 +345,11 @@ RelaxResult Rk4Run::run() {
             lastProgress = now;
         }
 
-        bool ok = rk4Stage(1, step) && rk4Stage(2, step) && rk4Stage(3, step);
+        const bool finiteStep = rk4Stage(1, step) && rk4Stage(2, step) && rk4Stage(3, step);
         ++steps;
         ++sinceCheckpoint;
-        if (!ok) {
-            x_ = checkpoint_;
-            stepFraction *= 0.5;
-            sinceBackOff = 0;
-            if (stepFraction < kMinStepFraction) {
-                stopReason = "diverged";
-                break;
-            }
+        if (!finiteStep) {
+            backOff();
             continue;
         }
         if (++sinceBackOff >= kRecoverSteps && stepFraction < 1.0) {
@@ -372,8 +364,8 @@ RelaxResult Rk4Run::run() {
     field_.setLoad(options_.wind, scale);
     result.residual = evaluateResidual(x_.data());
     result.converged = result.residual < tolerance;
-    if (stopReason == "converged" && !result.converged)
-        stopReason = "diverged"; // cannot happen: converged is only declared at scale 1
+    if (result.converged) // a stop at a soft stage may still meet the tolerance at full stiffness
+        stopReason = "converged";
     result.stopReason = stopReason;
     result.steps = steps;
     result.forceEvaluations = evaluations_;

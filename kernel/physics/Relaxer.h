@@ -18,16 +18,18 @@ namespace netsculpt {
 
 /// A snapshot of a running relaxation, handed to RelaxOptions::progress.
 struct RelaxProgress {
-    double residual = 0;              ///< max |F_j| / (m_j |g|) over free knots at the current stiffness scale
+    /// max |F_j| / (m_j |g|) over free knots at the current stiffness scale.
+    double residual = 0;
     std::int64_t steps = 0;           ///< integration steps taken so far (rejected ones included)
     double seconds = 0;               ///< wall time since the start, s
     double estimatedSecondsLeft = -1; ///< s until the tolerance at full stiffness; < 0 = unknown
-    double stiffnessScale = 1;        ///< the continuation stage's scale s in (0, 1]; 1 = the material
+    double stiffnessScale = 1; ///< the continuation stage's scale s in (0, 1]; 1 = the material
 };
 
 struct RelaxOptions {
-    double tolerance = 1e-6; ///< converged when the residual at full stiffness is below it; finite, > 0
-    double maxSeconds = 60;  ///< wall-time limit, s; finite, > 0 (infinity is refused)
+    /// Converged when the residual at full stiffness is below it; finite, > 0.
+    double tolerance = 1e-6;
+    double maxSeconds = 60;     ///< wall-time limit, s; finite, > 0 (infinity is refused)
     std::int64_t maxSteps = -1; ///< limit on integration steps; -1 = none, else >= 0
     /// Threads of the force evaluation: 0 = automatic (the hardware's, but one for systems too
     /// small to gain from more), n >= 1 = exactly n. Results do not depend on it, bit for bit.
@@ -41,6 +43,8 @@ struct RelaxOptions {
     double progressInterval = 0.2; ///< s; finite, >= 0 (0 = every step)
     /// Stiffness continuation (the paper's): relax first with every stiffness scaled by
     /// previewStiffnessScale, then scale up by continuationFactor per stage to the material's.
+    /// A soft stage ends when its residual (at its own stiffness) is below 1e-3 or the
+    /// tolerance, whichever is larger; only the last stage, at scale 1, can converge.
     /// Skipped when the start already meets the tolerance. A warm start from an already relaxed
     /// shape converges faster with continuation = false.
     bool continuation = true;
@@ -52,11 +56,11 @@ struct RelaxOptions {
 };
 
 struct RelaxResult {
-    bool converged = false;  ///< residual < tolerance at full stiffness
-    double residual = 0;     ///< at the final positions, full stiffness (what residual() returns)
-    std::int64_t steps = 0;  ///< integration steps, rejected ones included
+    bool converged = false; ///< residual < tolerance at full stiffness
+    double residual = 0;    ///< at the final positions, full stiffness (what residual() returns)
+    std::int64_t steps = 0; ///< integration steps, rejected ones included
     std::int64_t forceEvaluations = 0; ///< passes of Eq. 3 over the whole system
-    double seconds = 0;      ///< wall time, s
+    double seconds = 0;                ///< wall time, s
     std::string backend = "rk4";
     /// "converged", "time limit", "step limit", "cancelled" or "diverged" (the step size
     /// collapsed; the positions are the last good state, never NaN).

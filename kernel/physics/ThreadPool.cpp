@@ -2,15 +2,16 @@
 
 #include <algorithm>
 #include <cassert>
-#include <cstdint>
 
 namespace netsculpt {
 
 namespace {
 
-// About 10..50 microseconds of polling: longer than the gap between the tasks of one
-// relaxation step, far shorter than a scheduler time slice.
-constexpr int kSpinIterations = 20000;
+// Polls before sleeping: longer than the gap between the tasks of one relaxation step (a few
+// microseconds), far shorter than a scheduler time slice.
+constexpr int kSpinIterations = 4000;
+// Chunks per thread: small enough pieces for the caller to take over a late worker's share.
+constexpr std::size_t kChunksPerThread = 4;
 
 inline void cpuRelax() {
 #if defined(__x86_64__) || defined(__i386__)
@@ -26,7 +27,7 @@ ThreadPool::ThreadPool(int threads) {
         threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     workers_.reserve(static_cast<std::size_t>(threads - 1));
     for (int worker = 1; worker < threads; ++worker)
-        workers_.emplace_back([this, worker] { workerLoop(worker); });
+        workers_.emplace_back([this] { workerLoop(); });
 }
 
 ThreadPool::~ThreadPool() {
@@ -37,29 +38,60 @@ ThreadPool::~ThreadPool() {
         worker.join();
 }
 
-void ThreadPool::dispatch(void* context, Trampoline trampoline) {
-    context_ = context;
-    trampoline_ = trampoline;
-    pending_.store(static_cast<int>(workers_.size()), std::memory_order_relaxed);
-    generation_.fetch_add(1, std::memory_order_release); // publishes context_ and trampoline_
+std::size_t ThreadPool::chunkCount(std::size_t count) const {
+    const std::size_t wanted =
+        workers_.empty() ? 1 : kChunksPerThread * static_cast<std::size_t>(size());
+    return std::min(count, wanted);
+}
+
+void ThreadPool::dispatch(void* context, std::size_t chunks, Trampoline trampoline) {
+    const std::uint32_t generation = generation_.load(std::memory_order_relaxed) + 1;
+    context_.store(context, std::memory_order_relaxed);
+    trampoline_.store(trampoline, std::memory_order_relaxed);
+    chunks_.store(static_cast<std::uint32_t>(chunks), std::memory_order_relaxed);
+    done_.store(0, std::memory_order_relaxed);
+    ticket_.store(std::uint64_t{generation} << 32, std::memory_order_release);
+    generation_.store(generation, std::memory_order_release);
     generation_.notify_all();
 
-    trampoline(context, 0);
+    claimChunks(generation);
 
+    const auto all = static_cast<std::uint32_t>(chunks);
     for (int spin = 0; spin < kSpinIterations; ++spin) {
-        if (pending_.load(std::memory_order_acquire) == 0)
+        if (done_.load(std::memory_order_acquire) == all)
             return;
         cpuRelax();
     }
-    for (int left = pending_.load(std::memory_order_acquire); left != 0;
-         left = pending_.load(std::memory_order_acquire))
-        pending_.wait(left, std::memory_order_acquire);
+    for (std::uint32_t done = done_.load(std::memory_order_acquire); done != all;
+         done = done_.load(std::memory_order_acquire))
+        done_.wait(done, std::memory_order_acquire);
 }
 
-void ThreadPool::workerLoop(int worker) {
-    std::uint64_t seen = 0;
+void ThreadPool::claimChunks(std::uint32_t generation) {
     for (;;) {
-        std::uint64_t now = generation_.load(std::memory_order_acquire);
+        std::uint64_t ticket = ticket_.load(std::memory_order_acquire);
+        if (static_cast<std::uint32_t>(ticket >> 32) != generation)
+            return;
+        const std::uint32_t chunk = static_cast<std::uint32_t>(ticket);
+        const std::uint32_t chunks = chunks_.load(std::memory_order_relaxed);
+        void* context = context_.load(std::memory_order_relaxed);
+        Trampoline trampoline = trampoline_.load(std::memory_order_relaxed);
+        if (chunk >= chunks)
+            return;
+        // Success proves the task (and the values just read) is still this generation's: the
+        // next task is published only after all of this one's chunks are claimed and done.
+        if (!ticket_.compare_exchange_weak(ticket, ticket + 1, std::memory_order_acq_rel))
+            continue;
+        trampoline(context, chunk);
+        if (done_.fetch_add(1, std::memory_order_acq_rel) + 1 == chunks)
+            done_.notify_one();
+    }
+}
+
+void ThreadPool::workerLoop() {
+    std::uint32_t seen = 0;
+    for (;;) {
+        std::uint32_t now = generation_.load(std::memory_order_acquire);
         for (int spin = 0; now == seen && spin < kSpinIterations; ++spin) {
             cpuRelax();
             now = generation_.load(std::memory_order_acquire);
@@ -71,9 +103,7 @@ void ThreadPool::workerLoop(int worker) {
         seen = now;
         if (stop_.load(std::memory_order_relaxed))
             return;
-        trampoline_(context_, worker);
-        if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1)
-            pending_.notify_one();
+        claimChunks(now);
     }
 }
 

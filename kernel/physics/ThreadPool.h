@@ -1,11 +1,14 @@
 #pragma once
-// A small persistent pool for the solver's flat loops: the caller and (threads - 1) workers run
-// one task together and the call returns when all have finished (a fork-join barrier). Workers
-// spin briefly between tasks (a relaxation step issues several tasks back to back) and then
-// sleep on an atomic wait, so an idle pool costs nothing. Nothing is allocated per task.
+// A small persistent pool for the solver's flat loops (fork-join). parallelFor splits an index
+// range into fixed chunks; the caller and the workers claim chunks until none is left, and the
+// call returns when every chunk is done. A worker that the OS has not scheduled yet simply
+// claims nothing, so a busy machine slows a task down to the caller's pace, never to a
+// scheduler time slice. Workers spin briefly between tasks (a relaxation step issues several
+// back to back) and then sleep on an atomic wait. Nothing is allocated per task.
 //
-// Deterministic by construction for the solver's use: a task gets a fixed index range per
-// worker; the solver writes results so that they do not depend on how ranges are split.
+// Determinism: the chunks depend only on the count and size(), never on who runs them; a body
+// that writes per-index results (and per-chunk partial results) gives the same bits on any
+// schedule.
 
 #include <atomic>
 #include <cstddef>
@@ -18,7 +21,7 @@ namespace netsculpt {
 class ThreadPool {
   public:
     /// threads: the total number of threads that run a task, the caller included; 0 = one per
-    /// hardware thread. threads = 1 starts no worker.
+    /// hardware thread. threads = 1 starts no worker and runs everything on the caller.
     explicit ThreadPool(int threads = 0);
     ~ThreadPool();
     ThreadPool(const ThreadPool&) = delete;
@@ -27,39 +30,43 @@ class ThreadPool {
     /// The number of threads that run a task, the caller included (>= 1).
     int size() const { return static_cast<int>(workers_.size()) + 1; }
 
-    /// Calls task(worker) once on each of size() threads, worker in [0, size()), the caller
-    /// being worker 0, and returns when all calls have returned. task must not throw.
-    template <typename Task> void run(Task& task) {
-        if (workers_.empty()) {
-            task(0);
+    /// The number of chunks parallelFor splits a range of count indices into (<= count).
+    std::size_t chunkCount(std::size_t count) const;
+
+    /// Calls body(begin, end, chunk) for the chunks of [0, count): contiguous ranges, chunk in
+    /// [0, chunkCount(count)) in index order, each on some thread of the pool, and returns when
+    /// all are done. body must not throw.
+    template <typename Body> void parallelFor(std::size_t count, Body&& body) {
+        const std::size_t chunks = chunkCount(count);
+        if (chunks <= 1 || workers_.empty()) {
+            for (std::size_t chunk = 0; chunk < chunks; ++chunk)
+                body(count * chunk / chunks, count * (chunk + 1) / chunks, chunk);
             return;
         }
-        dispatch(&task, [](void* context, int worker) { (*static_cast<Task*>(context))(worker); });
-    }
-
-    /// Splits [0, count) into size() contiguous ranges (worker w gets the w-th) and calls
-    /// body(begin, end, worker) for each non-empty one.
-    template <typename Body> void parallelFor(std::size_t count, Body&& body) {
-        const std::size_t parts = static_cast<std::size_t>(size());
-        auto task = [&](int worker) {
-            const std::size_t w = static_cast<std::size_t>(worker);
-            const std::size_t begin = count * w / parts, end = count * (w + 1) / parts;
-            if (begin < end)
-                body(begin, end, worker);
+        auto runChunk = [&body, count, chunks](std::size_t chunk) {
+            body(count * chunk / chunks, count * (chunk + 1) / chunks, chunk);
         };
-        run(task);
+        dispatch(&runChunk, chunks, [](void* context, std::size_t chunk) {
+            (*static_cast<decltype(runChunk)*>(context))(chunk);
+        });
     }
 
   private:
-    using Trampoline = void (*)(void*, int);
-    void dispatch(void* context, Trampoline trampoline);
-    void workerLoop(int worker);
+    using Trampoline = void (*)(void*, std::size_t);
+    void dispatch(void* context, std::size_t chunks, Trampoline trampoline);
+    void claimChunks(std::uint32_t generation);
+    void workerLoop();
 
     std::vector<std::thread> workers_;
-    void* context_ = nullptr;
-    Trampoline trampoline_ = nullptr;
-    std::atomic<std::uint64_t> generation_{0}; ///< bumped once per task; workers wait on it
-    std::atomic<int> pending_{0};              ///< workers still running the current task
+    // The current task, published by the release store of ticket_/generation_.
+    std::atomic<void*> context_{nullptr};
+    std::atomic<Trampoline> trampoline_{nullptr};
+    std::atomic<std::uint32_t> chunks_{0};
+    /// (generation << 32) | next unclaimed chunk: a claim is a compare-exchange, so a late
+    /// worker can never take a chunk of a later task by mistake.
+    std::atomic<std::uint64_t> ticket_{0};
+    std::atomic<std::uint32_t> generation_{0}; ///< bumped once per task; idle workers wait on it
+    std::atomic<std::uint32_t> done_{0};       ///< chunks of the current task finished
     std::atomic<bool> stop_{false};
 };
 

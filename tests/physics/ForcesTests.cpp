@@ -1,1 +1,179 @@
+// Eq. 3 of the paper against hand-computed numbers, and the properties every evaluation has.
+#include "model/Error.h"
+#include "physics/Forces.h"
+#include "physics/ReferenceNets.h"
+#include "physics/ThreadPool.h"
+
 #include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstring>
+
+using namespace netsculpt;
+using Catch::Matchers::WithinAbs;
+using Catch::Matchers::WithinRel;
+
+namespace {
+
+// Knot 0 fixed at the origin; knot 1 free at (0.3, 0, 0), bar 0 = (0, 1) of rest length 0.2
+// (stretched by 0.1: k_s = 100 / 0.2 = 500 N/m, tension 50 N); knot 2 free at (0.3, 0.1, 0),
+// bar 1 = (1, 2) of rest length 0.15 (compressed by 0.05: k_c = 0.01 * 100 / 0.15 N/m,
+// tension -1/3 N).
+MassSpringSystem threeKnots() {
+    MassSpringSystem s;
+    s.position = {{0, 0, 0}, {0.3, 0, 0}, {0.3, 0.1, 0}};
+    s.mass = {0.01, 0.02, 0.03};
+    s.fixed = {1, 0, 0};
+    s.hold = {RailHold{RailId(1), 0}, {}, {}};
+    s.barA = {0, 1};
+    s.barB = {1, 2};
+    s.restLength = {0.2, 0.15};
+    s.kTension = {100 / 0.2, 100 / 0.15};
+    s.kCompression = {0.01 * 100 / 0.2, 0.01 * 100 / 0.15};
+    s.linearDensity = {0.006, 0.006};
+    s.barPiece = {PieceId(1), PieceId(1)};
+    return s;
+}
+
+void requireNear(const Vec3& actual, const Vec3& expected, double tolerance = 1e-12) {
+    CHECK_THAT(actual.x, WithinAbs(expected.x, tolerance));
+    CHECK_THAT(actual.y, WithinAbs(expected.y, tolerance));
+    CHECK_THAT(actual.z, WithinAbs(expected.z, tolerance));
+}
+
+MassSpringSystem perturbedSheet(int rows, int columns) {
+    SheetSpec spec;
+    spec.rows = rows;
+    spec.columns = columns;
+    spec.material.stiffness = 100;
+    MassSpringSystem s = makeSheet(spec);
+    for (std::size_t j = 0; j < s.knotCount(); ++j)
+        if (!s.fixed[j])
+            s.position[j] +=
+                Vec3{0.03 * std::sin(1.7 * j), 0.02 * std::cos(0.3 * j), 0.01 * std::sin(j)};
+    return s;
+}
+
+} // namespace
+
+TEST_CASE("Eq. 3 on three knots: k_s for the stretched bar, k_c for the compressed one",
+          "[forces]") {
+    const MassSpringSystem s = threeKnots();
+    const double g = 9.81, compression = -0.01 * 100 / 0.15 * 0.05;
+
+    const std::vector<double> tension = barTensions(s);
+    REQUIRE(tension.size() == 2);
+    CHECK_THAT(tension[0], WithinRel(50.0, 1e-12));
+    CHECK_THAT(tension[1], WithinRel(compression, 1e-12));
+
+    const std::vector<Vec3> force = knotForces(s);
+    requireNear(force[0], {50, 0, -0.01 * g});
+    requireNear(force[1], {-50, compression, -0.02 * g});
+    requireNear(force[2], {0, -compression, -0.03 * g});
+
+    const std::vector<double> r = knotResiduals(s);
+    CHECK(r[0] == 0.0); // fixed
+    CHECK_THAT(r[1], WithinRel(force[1].norm() / (0.02 * g), 1e-14));
+    CHECK_THAT(r[2], WithinRel(force[2].norm() / (0.03 * g), 1e-14));
+    CHECK(residual(s) == std::max(r[1], r[2]));
+
+    const std::vector<Vec3> reaction = reactions(s);
+    requireNear(reaction[0], -force[0]);
+    requireNear(reaction[1], {});
+    CHECK_THAT(totalWeight(s), WithinRel(0.06 * g, 1e-14));
+}
+
+TEST_CASE("The stiffness scale multiplies both spring constants", "[forces]") {
+    const MassSpringSystem s = threeKnots();
+    ForceField field(s);
+    field.setLoad(std::nullopt, 0.25);
+    std::vector<double> tension(2);
+    field.computeBars(s.position.data(), 0, 2, tension.data());
+    CHECK_THAT(tension[0], WithinRel(12.5, 1e-12));
+    CHECK_THAT(tension[1], WithinRel(-0.25 * 0.01 * 100 / 0.15 * 0.05, 1e-12));
+    CHECK_THROWS_AS(field.setLoad(std::nullopt, 0.0), UserError);
+}
+
+TEST_CASE("Wind loads each bar by q L times the wind's part normal to it, half per end",
+          "[forces]") {
+    const MassSpringSystem s = threeKnots();
+    const Wind wind{{3, 3, 0}, 2.0}; // direction normalized to (1, 1, 0) / sqrt 2
+    const std::vector<Vec3> calm = knotForces(s), windy = knotForces(s, wind);
+    const double c = 1 / std::sqrt(2.0);
+    // Bar 0 lies along x (length 0.3): (0, c, 0) * 2 * 0.3, half to knots 0 and 1.
+    // Bar 1 lies along y (length 0.1): (c, 0, 0) * 2 * 0.1, half to knots 1 and 2.
+    requireNear(windy[0] - calm[0], {0, 0.3 * c, 0});
+    requireNear(windy[1] - calm[1], {0.1 * c, 0.3 * c, 0});
+    requireNear(windy[2] - calm[2], {0.1 * c, 0, 0});
+
+    CHECK_THROWS_AS(knotForces(s, Wind{{0, 0, 0}, 1}), UserError);
+    CHECK_THROWS_AS(knotForces(s, Wind{{1, 0, 0}, -1}), UserError);
+    CHECK_THROWS_AS(knotForces(s, Wind{{NAN, 0, 0}, 1}), UserError);
+}
+
+TEST_CASE("Bar forces are internal: the knot forces sum to the weight in any state", "[forces]") {
+    const MassSpringSystem s = perturbedSheet(7, 9);
+    Vec3 sum;
+    for (const Vec3& f : knotForces(s))
+        sum += f;
+    const double weight = totalWeight(s);
+    CHECK_THAT(sum.x, WithinAbs(0, 1e-12));
+    CHECK_THAT(sum.y, WithinAbs(0, 1e-12));
+    CHECK_THAT(sum.z, WithinAbs(-weight, 1e-12));
+    CHECK(barTensions(s).size() == s.barCount());
+}
+
+TEST_CASE("A bar of zero length exerts no force and makes no NaN", "[forces]") {
+    MassSpringSystem s = threeKnots();
+    s.position[2] = s.position[1];
+    const std::vector<Vec3> force = knotForces(s);
+    requireNear(force[2], {0, 0, -0.03 * 9.81});
+    CHECK(std::isfinite(residual(s)));
+}
+
+TEST_CASE("The force is bit-identical with one or two threads", "[forces][determinism]") {
+    const MassSpringSystem s = perturbedSheet(30, 40);
+    ForceField field(s);
+    field.setLoad(Wind{{1, 0.5, 0}, 0.3}, 0.7);
+    std::vector<Vec3> one(s.knotCount()), two(s.knotCount());
+    field.evaluate(s.position, one);
+    ThreadPool pool(2);
+    field.evaluate(s.position, two, &pool);
+    REQUIRE(std::memcmp(one.data(), two.data(), one.size() * sizeof(Vec3)) == 0);
+}
+
+TEST_CASE("A malformed system is a user error naming the culprit", "[forces]") {
+    auto rejects = [](MassSpringSystem s, const char* word) {
+        try {
+            ForceField field(s);
+            FAIL("accepted");
+        } catch (const UserError& e) {
+            CHECK_THAT(e.what(), Catch::Matchers::Contains(word));
+        }
+    };
+    MassSpringSystem s = threeKnots();
+    s.mass[1] = 0;
+    rejects(s, "knot 1 has mass 0");
+    s = threeKnots();
+    s.barB[1] = 7;
+    rejects(s, "bar 1 joins knots 1 and 7");
+    s = threeKnots();
+    s.restLength[0] = -1;
+    rejects(s, "bar 0 has rest length -1");
+    s = threeKnots();
+    s.kTension[1] = 0;
+    rejects(s, "bar 1 has kTension 0");
+    s = threeKnots();
+    s.barA.pop_back();
+    s.barB.pop_back();
+    s.restLength.pop_back();
+    s.kTension.pop_back();
+    s.kCompression.pop_back();
+    rejects(s, "knot 2 is free and has no bar");
+    s = threeKnots();
+    s.gravity = {0, 0, 0};
+    rejects(s, "gravity");
+    s = threeKnots();
+    s.kCompression.push_back(1);
+    rejects(s, "kCompression has 3 entries, expected 2");
+}
