@@ -97,7 +97,6 @@ CommandResult applyCommand(Sculpture& s, const Command& command) {
             } else if constexpr (std::is_same_v<T, RenamePieceCommand>) {
                 renamePiece(s, c.piece, c.name);
             } else if constexpr (std::is_same_v<T, RemovePieceCommand>) {
-                (void)s.piece(c.piece); // an unknown or removed id is an error, not a no-op
                 removePiece(s, c.piece);
             } else {
                 static_assert(std::is_same_v<T, SetGravityCommand>);

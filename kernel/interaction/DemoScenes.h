@@ -1,0 +1,16 @@
+#pragma once
+// Built-in sculptures for the studio's --demo (until scripts can be run) and for its tests:
+// every one is built through Document::execute, so it lands in the journal like an artist's work.
+
+#include "commands/Document.h"
+
+namespace netsculpt {
+
+/// A crown rail with a net, a geared net below it drawn in to a small ring, and a sheet on an
+/// open rail beside them (three pieces, three rails; about 1000 knots).
+void buildDemoSculpture(Document& doc);
+
+/// One closed rail with one tube of about `knots` knots (for frame-rate measurements).
+void buildLargeDemoSculpture(Document& doc, int knots);
+
+} // namespace netsculpt

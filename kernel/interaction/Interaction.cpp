@@ -1,0 +1,324 @@
+#include "interaction/Interaction.h"
+
+#include "model/Error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace netsculpt {
+
+namespace {
+
+/// Gears ordered by the columns they give (what a drag up steps through), the allowed ones only.
+std::vector<Gear> gearLadder(const Sculpture& s, const Piece& p) {
+    const ParentEdge& edge = p.parentTop();
+    const int n = int(sourceRow(s, edge).size());
+    std::vector<Gear> ladder;
+    for (Gear g : {Gear{1, 3}, Gear{1, 2}, Gear{1, 1}, Gear{2, 1}, Gear{3, 1}}) {
+        try {
+            (void)gearedColumns(n, edge.ringClosed, g);
+            ladder.push_back(g);
+        } catch (const UserError&) {
+        }
+    }
+    return ladder;
+}
+
+/// Whole pixels of drag turned into whole steps, towards zero (a 7 px drag at 8 px/row is 0 rows).
+/// (The small allowance keeps an exact multiple that arrives as 71.99999... px a whole step.)
+int steps(double pixels, double pixelsPerStep) {
+    const int n = int(std::floor(std::abs(pixels) / pixelsPerStep + 1e-6));
+    return pixels < 0 ? -n : n;
+}
+
+} // namespace
+
+int defaultColumns(double railLength, bool closedRail, double spacing, int maxColumns) {
+    const double n = std::round(railLength / spacing) + (closedRail ? 0 : 1);
+    return int(std::clamp(n, closedRail ? 3.0 : 2.0, double(std::max(maxColumns, 3))));
+}
+
+Interaction::Interaction(Document& doc, Camera& camera, InteractionSettings settings)
+    : doc_(&doc), camera_(&camera), settings_(settings) {
+    refresh();
+}
+
+void Interaction::setDocument(Document& doc) {
+    doc_ = &doc;
+    drag_ = Drag::None;
+    dragHandle_.reset();
+    hoveredPiece_ = selected_ = PieceId{};
+    changed();
+}
+
+void Interaction::setMode(Mode mode) {
+    if (drag_ == Drag::Handle) return; // finish the gesture first
+    mode_ = mode;
+    refresh();
+}
+
+void Interaction::changed() {
+    ++version_;
+    if (selected_ && !doc_->sculpture().hasPiece(selected_)) selected_ = PieceId{};
+    refresh();
+}
+
+void Interaction::refresh() {
+    const Sculpture& s = doc_->sculpture();
+    if (drag_ == Drag::Handle && dragHandle_ && dragHandle_->kind == HandleKind::ConnectSource)
+        handles_ = connectTargets(s, doc_->compiled(), dragHandle_->piece, settings_.handles);
+    else
+        handles_ = handlesForMode(mode_, s, doc_->compiled(), settings_.handles);
+    updateHover();
+}
+
+void Interaction::frameAll() {
+    const auto [lo, hi] = sceneBounds(doc_->sculpture(), doc_->compiled());
+    camera_->frame(lo, hi);
+}
+
+void Interaction::updateHover() {
+    hovered_ = drag_ == Drag::Orbit || drag_ == Drag::Pan
+                   ? -1
+                   : pickHandle(handles_, *camera_, cursorX_, cursorY_, settings_.pickRadiusPixels);
+}
+
+bool Interaction::execute(const Command& command, bool merge) {
+    try {
+        lastCreated_ = doc_->execute(command, merge);
+    } catch (const UserError& e) {
+        message_ = e.what();
+        messageIsError_ = true;
+        return false;
+    }
+    message_ = commandName(command);
+    messageIsError_ = false;
+    changed();
+    return true;
+}
+
+bool Interaction::undo() {
+    if (drag_ == Drag::Handle || !doc_->canUndo()) return false;
+    doc_->undo();
+    message_ = "undo";
+    messageIsError_ = false;
+    changed();
+    return true;
+}
+
+bool Interaction::redo() {
+    if (drag_ == Drag::Handle || !doc_->canRedo()) return false;
+    doc_->redo();
+    message_ = "redo";
+    messageIsError_ = false;
+    changed();
+    return true;
+}
+
+void Interaction::handle(const InputEvent& event) {
+    if (const auto* move = std::get_if<MouseMove>(&event)) onMove(move->x, move->y);
+    else if (const auto* press = std::get_if<MousePress>(&event)) onPress(press->button, press->mods);
+    else if (const auto* release = std::get_if<MouseRelease>(&event)) onRelease(release->button);
+    else if (const auto* key = std::get_if<KeyPress>(&event)) onKey(*key);
+    else if (const auto* scroll = std::get_if<Scroll>(&event)) {
+        camera_->zoom(scroll->dy);
+        updateHover();
+    }
+}
+
+void Interaction::onMove(double x, double y) {
+    cursorX_ = x;
+    cursorY_ = y;
+    const double dx = x - lastX_, dy = y - lastY_;
+    lastX_ = x;
+    lastY_ = y;
+    switch (drag_) {
+    case Drag::Orbit: camera_->orbit(dx, dy, settings_.orbitRadiansPerPixel); break;
+    case Drag::Pan: camera_->pan(dx, dy); break;
+    case Drag::Handle: dragHandleTo(y); break;
+    case Drag::None: hoveredPiece_ = pieceAt(x, y); break;
+    }
+    updateHover();
+}
+
+void Interaction::onPress(MouseButton button, Modifiers mods) {
+    if (drag_ != Drag::None) return; // a second button during a gesture is ignored
+    pressX_ = lastX_ = cursorX_;
+    pressY_ = lastY_ = cursorY_;
+    dragButton_ = button;
+    updateHover();
+    if (button == MouseButton::Left && !mods.shift && hovered_ >= 0) {
+        const Handle h = handles_[std::size_t(hovered_)];
+        const Sculpture& s = doc_->sculpture();
+        drag_ = Drag::Handle;
+        dragHandle_ = h;
+        if (h.piece) selected_ = h.piece;
+        doc_->endGesture(); // this gesture never merges into an earlier one
+        if (h.piece && s.hasPiece(h.piece)) {
+            const Piece& p = s.piece(h.piece);
+            switch (h.kind) {
+            case HandleKind::RowsEnd: dragStartValue_ = p.rows; break;
+            case HandleKind::ColumnsEdge:
+                if (p.onRail()) dragStartValue_ = p.columns;
+                else {
+                    const auto ladder = gearLadder(s, p);
+                    const auto at = std::find(ladder.begin(), ladder.end(), p.parentTop().gear);
+                    dragStartValue_ = double(at - ladder.begin());
+                }
+                break;
+            case HandleKind::BarEnd: dragStartValue_ = p.bar.at(h.barColumn.value_or(0)); break;
+            default: break;
+            }
+        }
+        lastApplied_ = dragStartValue_;
+        if (h.kind == HandleKind::ConnectSource) refresh(); // show the rails it may join
+        return;
+    }
+    drag_ = (button == MouseButton::Left && !mods.shift) ? Drag::Orbit : Drag::Pan;
+    hovered_ = -1;
+}
+
+void Interaction::onRelease(MouseButton button) {
+    if (drag_ == Drag::None || button != dragButton_) return;
+    const bool click = std::hypot(cursorX_ - pressX_, cursorY_ - pressY_) <= settings_.clickSlopPixels;
+    const Drag was = drag_;
+    drag_ = Drag::None;
+    if (was == Drag::Handle && dragHandle_) {
+        const Handle h = *dragHandle_;
+        dragHandle_.reset();
+        if (h.kind == HandleKind::ConnectSource) {
+            // Drop on a rail sphere ("on top of" = projections within the pick radius); elsewhere
+            // nothing happens and nothing is journaled.
+            const int target = pickHandle(handles_, *camera_, cursorX_, cursorY_, settings_.pickRadiusPixels);
+            if (target >= 0) {
+                const Handle& t = handles_[std::size_t(target)];
+                execute(ConnectToRailCommand{h.piece, t.rail, t.t, t.reverse});
+            } else {
+                message_ = "connect: dropped away from the rails; nothing changed";
+                messageIsError_ = false;
+            }
+        } else if (click) {
+            clickHandle(h);
+        }
+        doc_->endGesture();
+        refresh();
+        return;
+    }
+    if (was == Drag::Orbit && click) selected_ = pieceAt(cursorX_, cursorY_);
+    updateHover();
+}
+
+void Interaction::clickHandle(const Handle& h) {
+    const Sculpture& s = doc_->sculpture();
+    switch (h.kind) {
+    case HandleKind::RailPoint: {
+        if (!s.hasRail(h.rail)) return;
+        const Curve& curve = s.rail(h.rail).curve();
+        AttachToRailArgs args;
+        args.rail = h.rail;
+        args.rows = settings_.newPieceRows;
+        args.bar = settings_.newPieceBar;
+        args.columns = defaultColumns(curve.length(), curve.closed(), settings_.newPieceSpacingRatio * args.bar,
+                                      settings_.newPieceMaxColumns);
+        args.at = curve.closed() ? h.t : 0; // a piece on an open rail spans it from its start
+        if (execute(AttachToRailCommand{args})) selected_ = lastCreated_.pieces.front();
+        break;
+    }
+    case HandleKind::LastRow: {
+        AttachToPieceArgs args;
+        args.parent = h.piece;
+        args.gear = Gear{1, 1};
+        args.rows = settings_.newPieceRows;
+        args.bar = s.hasPiece(h.piece) ? s.piece(h.piece).bar.at(h.column) : settings_.newPieceBar;
+        if (execute(AttachToPieceCommand{args})) selected_ = lastCreated_.pieces.front();
+        break;
+    }
+    case HandleKind::TopKnot: execute(SplitCommand{h.piece, h.column}); break;
+    default: break; // value handles do nothing on a click
+    }
+}
+
+void Interaction::dragHandleTo(double y) {
+    const Handle& h = *dragHandle_;
+    const double down = y - pressY_; // pixels dragged downwards
+    const Sculpture& s = doc_->sculpture();
+    if (!h.piece || !s.hasPiece(h.piece)) return;
+    const Piece& p = s.piece(h.piece);
+    std::optional<Command> command;
+    double value = lastApplied_;
+    switch (h.kind) {
+    case HandleKind::RowsEnd:
+        value = std::max(1, int(dragStartValue_) + steps(down, settings_.pixelsPerRow));
+        command = SetRowsCommand{h.piece, int(value)};
+        break;
+    case HandleKind::ColumnsEdge:
+        if (p.onRail()) { // up = smaller spacing = more columns
+            value = std::max(p.closed ? 3 : 2, int(dragStartValue_) + steps(-down, settings_.pixelsPerColumn));
+            command = SetColumnsCommand{h.piece, int(value)};
+        } else { // below a piece: step through the gears that divide the parent's row
+            const auto ladder = gearLadder(s, p);
+            if (ladder.empty()) return;
+            value = std::clamp(int(dragStartValue_) + steps(-down, settings_.pixelsPerGear), 0, int(ladder.size()) - 1);
+            command = SetGearCommand{h.piece, ladder[std::size_t(value)]};
+        }
+        break;
+    case HandleKind::BarEnd: { // up = shorter, down = longer; whole millimetres
+        const double length = std::round((dragStartValue_ + down * settings_.barMetresPerPixel) * 1000) / 1000;
+        value = std::max(0.001, length);
+        command = SetBarLengthCommand{h.piece, h.barColumn, std::nullopt, value};
+        break;
+    }
+    case HandleKind::ConnectSource: return; // hover over the targets is all that changes
+    default: return;
+    }
+    if (value == lastApplied_) return;
+    if (execute(*command, /*merge=*/true)) lastApplied_ = value;
+}
+
+void Interaction::onKey(const KeyPress& key) {
+    const Modifiers m = key.mods;
+    if (drag_ == Drag::Handle) return;
+    if (m.ctrl && !m.alt) {
+        if (key.key == 'Z' && !m.shift) undo();
+        else if ((key.key == 'Z' && m.shift) || (key.key == 'Y' && !m.shift)) redo();
+        return;
+    }
+    if (m.alt) return;
+    static constexpr std::pair<int, Mode> modeKeys[] = {
+        {'V', Mode::View},    {'N', Mode::NewNet},    {'D', Mode::Divide}, {'R', Mode::Rows},
+        {'C', Mode::Columns}, {'B', Mode::BarLength}, {'J', Mode::Connect}};
+    for (const auto& [k, mode] : modeKeys)
+        if (key.key == k) return setMode(mode);
+    if (key.key >= '1' && key.key < '1' + int(std::size(kAllModes))) return setMode(kAllModes[key.key - '1']);
+    switch (key.key) {
+    case 'T': camera_->setPreset(ViewPreset::Top); break;
+    case 'F': camera_->setPreset(ViewPreset::Front); break;
+    case 'S': camera_->setPreset(ViewPreset::Side); break;
+    case 'P': camera_->setPreset(ViewPreset::Perspective); break;
+    case keys::Home: frameAll(); break;
+    case keys::Escape: setMode(Mode::View); break;
+    default: return;
+    }
+    updateHover();
+}
+
+PieceId Interaction::pieceAt(double x, double y) const {
+    const MassSpringSystem& sys = doc_->compiled().system;
+    double best = settings_.pickRadiusPixels, bestDepth = std::numeric_limits<double>::infinity();
+    PieceId found;
+    for (std::size_t j = 0; j < sys.knotCount(); ++j) {
+        if (sys.refStart.size() <= j + 1 || sys.refStart[j] == sys.refStart[j + 1]) continue;
+        const ScreenPoint sp = camera_->project(sys.position[j]);
+        if (!sp.visible) continue;
+        const double d = std::hypot(sp.x - x, sp.y - y);
+        if (d < best - 0.5 || (d < best + 0.5 && sp.depth < bestDepth)) {
+            best = d;
+            bestDepth = sp.depth;
+            found = sys.refs[sys.refStart[j]].piece;
+        }
+    }
+    return found;
+}
+
+} // namespace netsculpt

@@ -1,0 +1,112 @@
+#pragma once
+// Live relaxation for the studio: a background thread relaxes a copy of the compiled system and
+// publishes its positions a few dozen times a second; the UI thread never waits for it.
+//
+// preview() relaxes a soft copy of the material (every stiffness scaled by the preview scale, so
+// it settles in a fraction of the time; the shape is close to the final one). Each call cancels
+// the run in progress (RelaxOptions::cancel) and starts again from the positions it is given,
+// so every edit restarts from the current shape. refine() climbs the stiffness continuation up
+// to the material's stiffness and stops at the refine tolerance; its published residual is the
+// real one in the last stage.
+//
+// Publication: the worker builds a new immutable LiveState and swaps a shared_ptr under a mutex;
+// latest() copies the pointer (the UI reads a state nobody writes).
+
+#include "physics/MassSpringSystem.h"
+#include "physics/Relaxer.h"
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace netsculpt {
+
+struct LiveRelaxOptions {
+    /// Stiffness of the preview relative to the material, in (0, 1]. Raised when it would be so soft
+    /// that the net stretches visibly (EA is kept >= 20 x the mean load per held knot).
+    double previewStiffnessScale = 1e-2;
+    double previewTolerance = 1e-3;   ///< the preview stops below this residual (at its stiffness)
+    double stageTolerance = 1e-3;     ///< refine: residual that ends a softer continuation stage
+    double refineTolerance = 1e-6;    ///< refine: converged below this residual at full stiffness
+    double continuationFactor = 10;   ///< refine: stiffness ratio between stages, > 1
+    double maxSeconds = 600;          ///< a run gives up after this long, s
+    double publishInterval = 1.0 / 30; ///< s of relaxation between two published shapes
+    std::string backend = "auto";     ///< see makeRelaxer
+    int threads = 0;                  ///< RelaxOptions::threads
+};
+
+enum class LivePhase { Idle, Preview, Refine };
+
+/// One published shape and how the run stands. Immutable once published.
+struct LiveState {
+    std::uint64_t generation = 0; ///< the tag given to preview()/refine(): which document state
+    std::uint64_t sequence = 0;   ///< increases with every publication
+    std::vector<Vec3> positions;  ///< m, one per knot of the system it was given
+    LivePhase phase = LivePhase::Idle;
+    bool running = false;         ///< more publications of this run will follow
+    bool converged = false;       ///< the run reached its tolerance (preview: at its soft stiffness)
+    double residual = 0;          ///< max |F|/(m|g|) at stiffnessScale, at these positions
+    double stiffnessScale = 1;    ///< of the stage the positions come from
+    std::int64_t steps = 0;       ///< integration steps of this run so far
+    double seconds = 0;           ///< wall time of this run so far, s
+    std::string stopReason;       ///< when !running: "converged", "cancelled", "time limit", "diverged", "error"
+    std::string error;            ///< the UserError text when stopReason == "error"
+};
+
+class LiveRelaxer {
+  public:
+    explicit LiveRelaxer(LiveRelaxOptions options = {});
+    ~LiveRelaxer(); ///< cancels and joins the worker
+    LiveRelaxer(const LiveRelaxer&) = delete;
+    LiveRelaxer& operator=(const LiveRelaxer&) = delete;
+
+    /// Restarts the soft preview from `system`'s positions (copied). Returns at once.
+    void preview(const MassSpringSystem& system, std::uint64_t generation);
+    /// Relaxes at the material's stiffness from `system`'s positions (copied). Returns at once.
+    void refine(const MassSpringSystem& system, std::uint64_t generation);
+    /// Cancels the run in progress (the last published state stays).
+    void cancel();
+
+    /// The last published state; null before the first publication.
+    std::shared_ptr<const LiveState> latest() const;
+    /// Waits until no run is queued or running, up to `timeoutSeconds`. True when idle.
+    bool waitIdle(double timeoutSeconds) const;
+    const LiveRelaxOptions& options() const { return options_; }
+
+  private:
+    struct Job {
+        MassSpringSystem system;
+        std::uint64_t generation = 0;
+        LivePhase phase = LivePhase::Preview;
+    };
+    void start(const MassSpringSystem& system, std::uint64_t generation, LivePhase phase);
+    void workerLoop();
+    void runJob(Job& job);
+    void publish(LiveState state);
+    bool superseded() const;
+    bool hasPending() const;
+
+    LiveRelaxOptions options_;
+    mutable std::mutex mutex_;
+    std::condition_variable wake_;
+    mutable std::condition_variable idle_;
+    std::optional<Job> pending_;
+    bool busy_ = false;
+    bool quit_ = false;
+    std::atomic<bool> cancel_{false};
+    std::uint64_t sequence_ = 0;
+    std::shared_ptr<const LiveState> latest_;
+    std::unique_ptr<Relaxer> relaxer_; ///< used by the worker thread only
+    std::thread worker_; // last: starts after everything it uses exists
+};
+
+/// The soft scale the preview uses for `system` (previewStiffnessScale raised to the strain floor).
+double previewScale(const MassSpringSystem& system, double requested);
+
+} // namespace netsculpt

@@ -1,0 +1,213 @@
+// The fabrication and load report (Report.h): counts, lengths and masses per piece, reactions
+// per rail point, and the sculpture's totals with the force balance check.
+
+#include "io/Report.h"
+
+#include "io/Scene.h"
+#include "physics/Forces.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace netsculpt {
+
+namespace {
+
+using nlohmann::json;
+
+json vec(const Vec3& v) {
+    return {{"x", v.x}, {"y", v.y}, {"z", v.z}};
+}
+
+/// The (piece, row, column) knot k stands for, preferring `piece` when it holds the knot.
+KnotRef refOf(const MassSpringSystem& sys, std::uint32_t k, PieceId piece) {
+    for (std::uint32_t i = sys.refStart[k]; i < sys.refStart[k + 1]; ++i)
+        if (sys.refs[i].piece == piece)
+            return sys.refs[i];
+    return sys.refs[sys.refStart[k]];
+}
+
+json railEdge(const Sculpture& s, const RailEdge& e) {
+    return {{"kind", "rail"},      {"rail", e.rail.value}, {"rail_name", s.rail(e.rail).name},
+            {"at", e.at},          {"step", e.step},       {"offset", e.offset},
+            {"reverse", e.reverse}};
+}
+
+json pieceTop(const Sculpture& s, const Piece& p) {
+    if (p.onRail())
+        return railEdge(s, p.railTop());
+    const ParentEdge& e = p.parentTop();
+    json parents = json::array();
+    for (PieceId id : e.parents)
+        parents.push_back(id.value);
+    return {{"kind", "piece"},
+            {"parents", parents},
+            {"gear", toString(e.gear)},
+            {"gear_value", e.gear.value()},
+            {"offset", e.offset}};
+}
+
+json pieceReport(const Sculpture& s, const CompiledSculpture& c, const Piece& p) {
+    const MassSpringSystem& sys = c.system;
+    std::size_t bars = 0, ownedKnots = 0;
+    double rope = 0, ropeMass = 0;
+    for (std::size_t b = 0; b < sys.barCount(); ++b)
+        if (sys.barPiece[b] == p.id) {
+            ++bars;
+            rope += sys.restLength[b];
+            ropeMass += sys.linearDensity[b] * sys.restLength[b];
+        }
+    for (std::size_t k = 0; k < sys.knotCount(); ++k)
+        if (sys.refs[sys.refStart[k]].piece == p.id)
+            ++ownedKnots;
+    json lengths = json::array();
+    const int count = p.bar.axis == BarAxis::Column ? p.columns : p.rows;
+    for (int i = 0; i < count; ++i)
+        lengths.push_back(p.bar.at(i));
+    json seams = json::array();
+    for (const Seam& seam : s.seams) {
+        if (seam.left == p.id)
+            seams.push_back({{"side", "right"}, {"piece", seam.right.value}});
+        if (seam.right == p.id)
+            seams.push_back({{"side", "left"}, {"piece", seam.left.value}});
+    }
+    const Material& m = p.material;
+    return {{"id", p.id.value},
+            {"name", p.name},
+            {"rows", p.rows},
+            {"columns", p.columns},
+            {"closed", p.closed},
+            {"knots", std::size_t(p.rows) * std::size_t(p.columns)},
+            {"bars", bars},
+            {"rope_length", rope},
+            {"mass", ropeMass + m.knotMass * double(ownedKnots)},
+            {"bar_axis", p.bar.axis == BarAxis::Column ? "column" : "row"},
+            {"bar_lengths", lengths},
+            {"material",
+             {{"stiffness", m.stiffness},
+              {"compression_ratio", m.compressionRatio},
+              {"knot_mass", m.knotMass},
+              {"linear_density", m.linearDensity}}},
+            {"colour", {p.colour.r, p.colour.g, p.colour.b}},
+            {"top", pieceTop(s, p)},
+            {"bottom", p.bottom ? railEdge(s, *p.bottom) : json(nullptr)},
+            {"seams", seams}};
+}
+
+} // namespace
+
+nlohmann::json buildReport(const Sculpture& s, const CompiledSculpture& c,
+                           const RelaxStatus& status) {
+    const MassSpringSystem& sys = c.system;
+    const bool physical = sys.knotCount() > 0;
+    const std::vector<double> tension = sys.barCount() ? barTensions(sys) : std::vector<double>{};
+    const std::vector<Vec3> reaction = physical ? reactions(sys) : std::vector<Vec3>{};
+    const double weight = physical ? totalWeight(sys) : 0.0;
+    json report;
+    report["relaxed"] = status.relaxed;
+    report["residual"] = physical ? residual(sys) : 0.0;
+    const RelaxResult& r = status.last;
+    report["relax"] = {{"converged", r.converged}, {"residual", r.residual},
+                       {"steps", r.steps},         {"seconds", r.seconds},
+                       {"backend", r.backend},     {"stop_reason", r.stopReason}};
+    report["knots"] = sys.knotCount();
+    report["bars"] = sys.barCount();
+
+    double mass = 0, rope = 0;
+    for (double m : sys.mass)
+        mass += m;
+    for (double l : sys.restLength)
+        rope += l;
+    report["total_mass"] = mass;
+    report["total_weight"] = weight;
+    report["rope_length"] = rope;
+
+    std::size_t slack = 0, strongest = 0;
+    for (std::size_t b = 0; b < sys.barCount(); ++b) {
+        if (io::isSlack(distance(sys.position[sys.barA[b]], sys.position[sys.barB[b]]),
+                        sys.restLength[b]))
+            ++slack;
+        if (tension[b] > tension[strongest])
+            strongest = b;
+    }
+    report["slack_bars"] = slack;
+    report["max_tension"] = sys.barCount() ? std::max(0.0, tension[strongest]) : 0.0;
+    if (sys.barCount()) {
+        const PieceId piece = sys.barPiece[strongest];
+        const KnotRef a = refOf(sys, sys.barA[strongest], piece),
+                      b = refOf(sys, sys.barB[strongest], piece);
+        report["max_tension_at"] = {{"bar", strongest},
+                                    {"piece", piece.value},
+                                    {"a", {{"row", a.row}, {"column", a.column}}},
+                                    {"b", {{"row", b.row}, {"column", b.column}}}};
+    } else {
+        report["max_tension_at"] = nullptr;
+    }
+
+    // At equilibrium the rails carry the whole weight: sum of reactions = -(total mass) g.
+    Vec3 reactionSum;
+    json rails = json::array();
+    for (const auto& [id, rail] : s.rails) {
+        std::vector<std::uint32_t> held;
+        for (std::uint32_t k = 0; k < sys.knotCount(); ++k)
+            if (sys.fixed[k] && sys.hold[k].rail == id)
+                held.push_back(k);
+        std::stable_sort(held.begin(), held.end(),
+                         [&](auto a, auto b) { return sys.hold[a].t < sys.hold[b].t; });
+        const auto onRail = s.piecesOnRail(id);
+        Vec3 sum;
+        double largest = 0;
+        json points = json::array();
+        for (std::uint32_t k : held) {
+            KnotRef ref = sys.refs[sys.refStart[k]];
+            for (PieceId p : onRail)
+                if (refOf(sys, k, p).piece == p) {
+                    ref = refOf(sys, k, p);
+                    break;
+                }
+            sum += reaction[k];
+            largest = std::max(largest, reaction[k].norm());
+            points.push_back({{"piece", ref.piece.value},
+                              {"row", ref.row},
+                              {"column", ref.column},
+                              {"t", sys.hold[k].t},
+                              {"reaction", vec(reaction[k])},
+                              {"magnitude", reaction[k].norm()}});
+        }
+        reactionSum += sum;
+        rails.push_back({{"id", id.value},
+                         {"name", rail.name},
+                         {"closed", rail.curve().closed()},
+                         {"length", rail.curve().length()},
+                         {"attachments", held.size()},
+                         {"reaction", vec(sum)},
+                         {"max_reaction", largest},
+                         {"points", std::move(points)}});
+    }
+    const Vec3 expected = s.gravity * -mass;
+    const Vec3 difference = reactionSum - expected;
+    const double relative = weight > 0 ? difference.norm() / weight : 0.0;
+    report["force_balance"] = {
+        {"reaction_sum", vec(reactionSum)},
+        {"expected", vec(expected)},
+        {"difference", vec(difference)},
+        {"relative_difference", relative},
+        {"tolerance", status.tolerance},
+        {"within_tolerance", relative <= status.tolerance},
+        {"relaxed", status.relaxed},
+        {"note",
+         status.relaxed
+             ? "relaxed: the rails' reactions should carry the total weight to the tolerance"
+             : "not relaxed: the reactions balance the weight only after a converged relaxation"}};
+
+    json pieces = json::array();
+    for (const auto& [id, piece] : s.pieces)
+        pieces.push_back(pieceReport(s, c, piece));
+    report["pieces"] = std::move(pieces);
+    report["rails"] = std::move(rails);
+    return report;
+}
+
+} // namespace netsculpt

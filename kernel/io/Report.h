@@ -1,0 +1,58 @@
+#pragma once
+// The fabrication and load report: the numbers a net maker and an engineer need (DESIGN.md
+// "Lua API": report()). Computed from the document's current shape.
+//
+// Keys (lengths m, masses kg, forces N, vectors {x, y, z}):
+//   relaxed (a relaxation converged since the last change), residual (max |F_j| / (m_j |g|) over
+//   free knots now), relax {converged, residual, steps, seconds, backend, stop_reason} of the last
+//   relaxation, knots, bars (distinct, whole sculpture), total_mass, total_weight, rope_length,
+//   max_tension, max_tension_at {bar, piece, a {row, column}, b {row, column}} (null without
+//   bars), slack_bars (bars shorter than their rest length by more than 1e-9 relative: in
+//   compression), force_balance {reaction_sum, expected (= -total mass x gravity), difference,
+//   relative_difference (|difference| / total_weight), tolerance, within_tolerance, relaxed,
+//   note}. Without a converged relaxation the balance is not expected to hold.
+//   pieces[]: id, name, rows, columns, closed, knots (rows x columns: its own grid, shared
+//   knots counted in every piece holding them), bars (the bars the piece owns), rope_length
+//   (sum of their rest lengths), mass (its bars' rope + the knot mass of the knots it owns: a
+//   shared knot's knot mass counts once, in the first piece that holds it; the pieces' masses
+//   sum to total_mass), bar_axis ("column" or "row"), bar_lengths[] (per column or per row),
+//   material {stiffness, compression_ratio, knot_mass, linear_density}, colour [r, g, b],
+//   top {kind "rail": rail, rail_name, at, step, reverse | kind "piece": parents[], gear},
+//   bottom (null or {rail, rail_name, at, step, reverse}), seams[] {side "left"/"right", piece}.
+//   rails[]: id, name, closed, length, attachments (fixed knots held by it), reaction (sum of
+//   the reaction forces of its points), max_reaction (largest magnitude), points[] {piece, row,
+//   column, t, reaction, magnitude}.
+
+#include "commands/Document.h"
+
+#include <nlohmann/json_fwd.hpp>
+
+#include <string>
+
+namespace netsculpt {
+
+/// How the shape being reported came about (what a Document knows).
+struct RelaxStatus {
+    bool relaxed = false;    ///< a relaxation converged since the last change
+    RelaxResult last;        ///< the last relaxation (converged = false before any)
+    double tolerance = 1e-6; ///< the relaxation tolerance the force balance is checked against
+};
+
+/// The full report as JSON (keys above).
+nlohmann::json buildReport(const Document& doc);
+/// The same for a sculpture and its compiled system at its current positions.
+nlohmann::json buildReport(const Sculpture& sculpture, const CompiledSculpture& compiled,
+                           const RelaxStatus& status = {});
+/// What `doc` knows about its shape; tolerance = RelaxOptions' default (the document does not
+/// keep the tolerance of its last relaxation).
+RelaxStatus relaxStatus(const Document& doc);
+
+/// The Markdown summary that `netsculpt report` prints.
+std::string reportMarkdown(const nlohmann::json& report);
+/// Per-piece table as CSV (id, name, rows, columns, closed, knots, bars, rope_length, mass,
+/// bar_axis, bar_min, bar_max).
+std::string reportPiecesCsv(const nlohmann::json& report);
+/// Per-attachment-point table as CSV (rail, piece, row, column, t, fx, fy, fz, magnitude).
+std::string reportAttachmentsCsv(const nlohmann::json& report);
+
+} // namespace netsculpt

@@ -1,0 +1,637 @@
+#include "physics/fast/NewtonRelaxer.h"
+
+#include "model/Error.h"
+#include "physics/Forces.h"
+#include "physics/ThreadPool.h"
+#include "physics/fast/SupernodalCholesky.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <thread>
+
+namespace netsculpt {
+
+namespace {
+
+// Soft stage: EA scaled down to kSoftLoadFactor times the mean load per held knot (strains of a
+// few per cent at the top of a net; the same floor as RK4's first continuation stage). No soft
+// stage when that would not soften the material by at least kMaxSoftScale.
+constexpr double kSoftLoadFactor = 20;
+constexpr double kMaxSoftScale = 0.1;
+// Then stages kStageFactor times stiffer each (the last intermediate one at least
+// sqrt(kStageFactor) below the material's): a tension-dominated net needs none (the jump from the
+// soft stage to the material costs three or four iterations), a slack one needs them because the
+// shape of its slack parts changes with the stiffness. Each soft stage only has to bring the shape
+// near the next one: it stops at kSoftTolerance.
+constexpr double kStageFactor = 100;
+constexpr double kSoftTolerance = 1e-1;
+// A start is warm (no soft stage) when at least this share of the bars is stretched by more
+// than kTautStrain (the bars already carry the load; their tensions seed the mixed Newton) ...
+constexpr double kWarmTautShare = 0.5;
+constexpr double kTautStrain = 1e-9;
+// ... and none is stretched by more than this (new knots placed far from their carried
+// neighbours after an edit need the soft stage again).
+constexpr double kWarmMaxStrain = 0.05;
+// ... and the start's residual is below this: the forces are out of balance by at most a
+// hundred times the knots' weights (rows added below a relaxed net are not; their weight, not
+// yet carried, is a cold start in disguise).
+constexpr double kWarmMaxResidual = 100;
+// Line search: Armijo's sufficient decrease, at most kMaxBacktracks halvings (safeguarded
+// quadratic interpolation).
+constexpr double kArmijo = 1e-4;
+constexpr int kMaxBacktracks = 30;
+// Levenberg shift mu = lambda * (mean diagonal of the Newton matrix). lambda never goes below
+// kMinShift (it keeps exactly singular directions, such as the out-of-plane motion of a planar
+// slack net, factorizable), jumps to at least kFailShift when a factorization or a line search
+// fails and grows tenfold per further failure; beyond kMaxShift the run has diverged.
+constexpr double kMinShift = 1e-10;
+constexpr double kFailShift = 1e-6;
+constexpr double kMaxShift = 1e6;
+// Mixed stage: a step is taken while the residual grows by less than kMixedGrowth; when the best
+// residual has not improved for kMixedPatience iterations the stage falls back to the energy line
+// search.
+constexpr double kMixedGrowth = 10;
+constexpr int kMixedPatience = 4;
+// An accepted step shorter than this (a fraction of the Newton step) raises the shift (not on a
+// stage's first iteration, whose direction is poor by nature from a cold start).
+constexpr double kSmallStep = 1e-3;
+// After the exact Hessian was found indefinite, the projected one is used for this many
+// iterations before the exact one is tried again.
+constexpr int kExactPause = 3;
+// Automatic thread count: at most one thread per this many bars.
+constexpr std::size_t kAutoBarsPerThread = 4096;
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+} // namespace
+
+/// The topology-dependent part of a run: the free numbering, the block pattern and its
+/// factorization analysis. Kept between calls for a system with the same topology.
+struct NewtonAnalysis {
+    std::vector<std::uint8_t> fixed;
+    std::vector<std::uint32_t> barA, barB;
+
+    std::vector<std::uint32_t> freeKnots;     ///< free index -> knot
+    std::vector<std::int64_t> freeIndex;      ///< knot -> free index, -1 when fixed
+    std::vector<std::int64_t> barPair;        ///< bar -> block pair, -1 when an end is fixed
+    std::vector<std::array<std::uint32_t, 2>> pairs; ///< free indices of the blocks' nodes
+    SupernodalCholesky cholesky;
+
+    bool matches(const MassSpringSystem& system) const {
+        return system.fixed == fixed && system.barA == barA && system.barB == barB;
+    }
+
+    explicit NewtonAnalysis(const MassSpringSystem& system)
+        : fixed(system.fixed), barA(system.barA), barB(system.barB) {
+        const std::size_t knots = system.knotCount(), bars = system.barCount();
+        freeIndex.assign(knots, -1);
+        for (std::size_t j = 0; j < knots; ++j)
+            if (!fixed[j]) {
+                freeIndex[j] = static_cast<std::int64_t>(freeKnots.size());
+                freeKnots.push_back(static_cast<std::uint32_t>(j));
+            }
+        // One block per pair of free knots joined by a bar (two bars between the same knots
+        // share it).
+        barPair.assign(bars, -1);
+        std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> byLow(freeKnots.size());
+        for (std::size_t b = 0; b < bars; ++b) {
+            const std::int64_t i = freeIndex[barA[b]], j = freeIndex[barB[b]];
+            if (i < 0 || j < 0)
+                continue;
+            const auto low = static_cast<std::uint32_t>(std::min(i, j));
+            const auto high = static_cast<std::uint32_t>(std::max(i, j));
+            auto& list = byLow[low];
+            auto at = std::find_if(list.begin(), list.end(),
+                                   [&](const auto& entry) { return entry.first == high; });
+            if (at == list.end()) {
+                list.emplace_back(high, static_cast<std::uint32_t>(pairs.size()));
+                barPair[b] = static_cast<std::int64_t>(pairs.size());
+                pairs.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)});
+            } else {
+                barPair[b] = at->second;
+            }
+        }
+        cholesky.analyse(freeKnots.size(), pairs);
+    }
+};
+
+namespace {
+
+/// One relaxation: the Newton iteration and its bookkeeping.
+class NewtonRun {
+  public:
+    NewtonRun(MassSpringSystem& system, const RelaxOptions& options, NewtonAnalysis& analysis,
+              NewtonStatistics& statistics, Clock::time_point start);
+    RelaxResult run();
+
+  private:
+    template <typename Body> void forRange(std::size_t count, Body&& body) {
+        if (pool_)
+            pool_->parallelFor(count, body);
+        else if (count > 0)
+            body(std::size_t{0}, count, std::size_t{0});
+    }
+
+    double evaluate(const std::vector<Vec3>& at);
+    void setScale(double scale);
+    void elasticTensions();
+    void assemble(bool mixed, bool exact);
+    bool factorize();
+    void solve();
+    double energyChange(double alpha);
+    double meritOf(const std::vector<Vec3>& at);
+    void takeStep(double alpha, bool mixed);
+    bool stopRequested();
+    void report(bool force);
+
+    MassSpringSystem& system_;
+    const RelaxOptions& options_;
+    NewtonAnalysis& analysis_;
+    NewtonStatistics& stats_;
+    Clock::time_point start_;
+    ForceField field_;
+    std::unique_ptr<ThreadPool> pool_;
+
+    std::vector<Vec3> x_, trial_, force_, step_;
+    std::vector<double> tension_;    ///< mixed stage: the bars' tension estimates, N
+    std::vector<double> barBlock_;   ///< 9 per bar: its Hessian block
+    std::vector<double> values_;     ///< the Newton matrix's blocks (SupernodalCholesky layout)
+    std::vector<double> rhs_;        ///< 3 per free knot
+    std::vector<double> barTerm_;    ///< per bar scratch for sums done in a fixed order
+    std::vector<double> weightOf_;   ///< m_j |g| per knot
+    double scale_ = 1;
+    double residual_ = 0;            ///< at x_, current scale
+    double shift_ = kMinShift;       ///< lambda of the Levenberg shift
+    double meanDiagonal_ = 1;
+    bool windy_ = false;
+    std::int64_t steps_ = 0, evaluations_ = 0;
+    double lastProgress_ = -std::numeric_limits<double>::infinity();
+    std::string stopReason_;
+};
+
+NewtonRun::NewtonRun(MassSpringSystem& system, const RelaxOptions& options,
+                     NewtonAnalysis& analysis, NewtonStatistics& statistics,
+                     Clock::time_point start)
+    : system_(system), options_(options), analysis_(analysis), stats_(statistics), start_(start),
+      field_(system) {
+    field_.setLoad(options.wind, 1.0);
+    windy_ = options.wind && options.wind->pressure > 0;
+    int threads = options.threads;
+    if (threads == 0) {
+        const std::size_t hardware = std::max(1u, std::thread::hardware_concurrency());
+        threads = static_cast<int>(
+            std::clamp<std::size_t>(field_.barCount() / kAutoBarsPerThread, 1, hardware));
+    }
+    if (threads > 1)
+        pool_ = std::make_unique<ThreadPool>(threads);
+
+    const std::size_t knots = system.knotCount(), bars = system.barCount();
+    x_ = system.position;
+    trial_ = x_;
+    force_.assign(knots, Vec3{});
+    step_.assign(knots, Vec3{});
+    tension_.assign(bars, 0.0);
+    barBlock_.assign(9 * bars, 0.0);
+    values_.assign(9 * (analysis.freeKnots.size() + analysis.pairs.size()), 0.0);
+    rhs_.assign(3 * analysis.freeKnots.size(), 0.0);
+    barTerm_.assign(bars, 0.0);
+    weightOf_.resize(knots);
+    const double g = system.gravity.norm();
+    for (std::size_t j = 0; j < knots; ++j)
+        weightOf_[j] = system.mass[j] * g;
+}
+
+/// Eq. 3 at `at` for the current scale into force_; returns the max residual over free knots
+/// (+inf if any is not finite).
+double NewtonRun::evaluate(const std::vector<Vec3>& at) {
+    field_.evaluate(at, force_, pool_.get());
+    ++evaluations_;
+    double worst = 0;
+    for (std::uint32_t j : analysis_.freeKnots) {
+        const double r = field_.residualOf(j, force_[j]);
+        if (!std::isfinite(r))
+            return std::numeric_limits<double>::infinity();
+        worst = std::max(worst, r);
+    }
+    return worst;
+}
+
+void NewtonRun::setScale(double scale) {
+    scale_ = scale;
+    field_.setLoad(options_.wind, scale);
+}
+
+/// tension_ = s k (l - l_eq) at x_: the elastic tensions at the current scale.
+void NewtonRun::elasticTensions() {
+    forRange(system_.barCount(), [&](std::size_t begin, std::size_t end, std::size_t) {
+        for (std::size_t b = begin; b < end; ++b) {
+            const double l = distance(x_[system_.barA[b]], x_[system_.barB[b]]);
+            const double extension = l - system_.restLength[b];
+            tension_[b] = (extension > 0 ? system_.kTension[b] : system_.kCompression[b]) *
+                          scale_ * extension;
+        }
+    });
+}
+
+/// The Newton matrix at x_: per bar k u u^T + q (I - u u^T) (q = t / l >= 0, the positive part
+/// of the geometric stiffness; t = k (l - l_eq), or the tension estimate in the mixed stage),
+/// summed per knot in the fixed order of ForceField::barsOfKnot.
+void NewtonRun::assemble(bool mixed, bool exact) {
+    const std::size_t bars = system_.barCount();
+    forRange(bars, [&](std::size_t begin, std::size_t end, std::size_t) {
+        for (std::size_t b = begin; b < end; ++b) {
+            const Vec3 d = x_[system_.barB[b]] - x_[system_.barA[b]];
+            const double l = d.norm();
+            const double extension = l - system_.restLength[b];
+            const double k =
+                (extension > 0 ? system_.kTension[b] : system_.kCompression[b]) * scale_;
+            double* h = &barBlock_[9 * b];
+            if (!(l > 0)) { // no direction: isotropic, keeps the matrix definite
+                for (int i = 0; i < 9; ++i)
+                    h[i] = i % 4 == 0 ? k : 0.0;
+                continue;
+            }
+            const double t = mixed ? tension_[b] : k * extension;
+            const double q = (exact ? t : std::max(t, 0.0)) / l;
+            const double u[3] = {d.x / l, d.y / l, d.z / l};
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j)
+                    h[3 * i + j] = (k - q) * u[i] * u[j] + (i == j ? q : 0.0);
+        }
+    });
+    const std::size_t freeCount = analysis_.freeKnots.size();
+    forRange(freeCount, [&](std::size_t begin, std::size_t end, std::size_t) {
+        for (std::size_t f = begin; f < end; ++f) {
+            double sum[9] = {};
+            for (std::uint32_t b : field_.barsOfKnot(analysis_.freeKnots[f]))
+                for (int i = 0; i < 9; ++i)
+                    sum[i] += barBlock_[9 * b + i];
+            std::copy(sum, sum + 9, &values_[9 * f]);
+        }
+    });
+    // Off-diagonal blocks: -H_b (bars in increasing order, so a shared block sums in order).
+    const std::size_t pairBase = 9 * freeCount;
+    std::fill(values_.begin() + static_cast<std::ptrdiff_t>(pairBase), values_.end(), 0.0);
+    for (std::size_t b = 0; b < bars; ++b) {
+        const std::int64_t p = analysis_.barPair[b];
+        if (p >= 0)
+            for (int i = 0; i < 9; ++i)
+                values_[pairBase + 9 * static_cast<std::size_t>(p) + static_cast<std::size_t>(i)] -=
+                    barBlock_[9 * b + static_cast<std::size_t>(i)];
+    }
+    double trace = 0;
+    for (std::size_t f = 0; f < freeCount; ++f)
+        trace += values_[9 * f] + values_[9 * f + 4] + values_[9 * f + 8];
+    meanDiagonal_ = freeCount > 0 && trace > 0 ? trace / (3.0 * static_cast<double>(freeCount)) : 1.0;
+}
+
+bool NewtonRun::factorize() {
+    const auto t0 = Clock::now();
+    const bool ok = analysis_.cholesky.factorize(values_, shift_ * meanDiagonal_, pool_.get());
+    stats_.factorSeconds += secondsSince(t0);
+    ++stats_.factorizations;
+    if (!ok)
+        ++stats_.failedFactorizations;
+    return ok;
+}
+
+/// step_ = (H + mu I)^-1 F at the free knots (zero at fixed ones).
+void NewtonRun::solve() {
+    const auto t0 = Clock::now();
+    const std::size_t freeCount = analysis_.freeKnots.size();
+    for (std::size_t f = 0; f < freeCount; ++f) {
+        const Vec3& F = force_[analysis_.freeKnots[f]];
+        rhs_[3 * f] = F.x;
+        rhs_[3 * f + 1] = F.y;
+        rhs_[3 * f + 2] = F.z;
+    }
+    analysis_.cholesky.solve(rhs_);
+    for (std::size_t f = 0; f < freeCount; ++f)
+        step_[analysis_.freeKnots[f]] = Vec3{rhs_[3 * f], rhs_[3 * f + 1], rhs_[3 * f + 2]};
+    stats_.solveSeconds += secondsSince(t0);
+}
+
+/// E(x + alpha step) - E(x) at the current scale, bar by bar in a form exact to the relative
+/// accuracy of the change itself (so the line search still sees a decrease near convergence).
+double NewtonRun::energyChange(double alpha) {
+    forRange(system_.barCount(), [&](std::size_t begin, std::size_t end, std::size_t) {
+        for (std::size_t b = begin; b < end; ++b) {
+            const std::uint32_t a = system_.barA[b], e = system_.barB[b];
+            const Vec3 d = x_[e] - x_[a];
+            const Vec3 change = (step_[e] - step_[a]) * alpha;
+            const Vec3 moved = d + change;
+            const double l = d.norm(), lNew = moved.norm(), rest = system_.restLength[b];
+            const double k = (l > rest ? system_.kTension[b] : system_.kCompression[b]) * scale_;
+            const double kNew = (lNew > rest ? system_.kTension[b] : system_.kCompression[b]) * scale_;
+            if (k == kNew && l + lNew > 0) {
+                // l' - l = (d' + d) . (d' - d) / (l' + l), without cancellation.
+                const double dl = change.dot(d * 2.0 + change) / (l + lNew);
+                barTerm_[b] = 0.5 * k * dl * (lNew + l - 2 * rest);
+            } else {
+                barTerm_[b] = 0.5 * kNew * (lNew - rest) * (lNew - rest) -
+                              0.5 * k * (l - rest) * (l - rest);
+            }
+        }
+    });
+    double change = 0;
+    for (double term : barTerm_)
+        change += term;
+    for (std::uint32_t j : analysis_.freeKnots)
+        change -= (system_.gravity * system_.mass[j]).dot(step_[j]) * alpha;
+    return change;
+}
+
+/// Sum over free knots of (|F_j| / (m_j |g|))^2 at `at` (the wind's merit), force_ overwritten.
+double NewtonRun::meritOf(const std::vector<Vec3>& at) {
+    field_.evaluate(at, force_, pool_.get());
+    ++evaluations_;
+    double sum = 0;
+    for (std::uint32_t j : analysis_.freeKnots) {
+        const double r = force_[j].norm() / weightOf_[j];
+        sum += r * r;
+    }
+    return std::isfinite(sum) ? sum : std::numeric_limits<double>::infinity();
+}
+
+/// x += alpha step; in the mixed stage the tension estimates follow the linearised lengths.
+void NewtonRun::takeStep(double alpha, bool mixed) {
+    if (mixed)
+        forRange(system_.barCount(), [&](std::size_t begin, std::size_t end, std::size_t) {
+            for (std::size_t b = begin; b < end; ++b) {
+                const std::uint32_t a = system_.barA[b], e = system_.barB[b];
+                const Vec3 d = x_[e] - x_[a];
+                const double l = d.norm();
+                if (!(l > 0))
+                    continue;
+                const double linear = l + d.dot(step_[e] - step_[a]) * (alpha / l);
+                const double extension = linear - system_.restLength[b];
+                tension_[b] = (extension > 0 ? system_.kTension[b] : system_.kCompression[b]) *
+                              scale_ * extension;
+            }
+        });
+    for (std::uint32_t j : analysis_.freeKnots)
+        x_[j] += step_[j] * alpha;
+}
+
+bool NewtonRun::stopRequested() {
+    if (options_.cancel && options_.cancel->load(std::memory_order_relaxed))
+        stopReason_ = "cancelled";
+    else if (secondsSince(start_) >= options_.maxSeconds)
+        stopReason_ = "time limit";
+    else if (options_.maxSteps >= 0 && steps_ >= options_.maxSteps)
+        stopReason_ = "step limit";
+    return !stopReason_.empty();
+}
+
+void NewtonRun::report(bool force) {
+    if (!options_.progress)
+        return;
+    const double now = secondsSince(start_);
+    if (!force && now - lastProgress_ < options_.progressInterval)
+        return;
+    lastProgress_ = now;
+    RelaxProgress progress;
+    progress.residual = residual_;
+    progress.steps = steps_;
+    progress.seconds = now;
+    progress.stiffnessScale = scale_;
+    options_.progress(progress);
+}
+
+RelaxResult NewtonRun::run() {
+    const std::size_t bars = system_.barCount();
+    const double tolerance = options_.tolerance;
+    setScale(1.0);
+    residual_ = evaluate(x_);
+
+    // Stages: an optional soft one (cold start), then the material's stiffness.
+    double softScale = 1.0;
+    bool warm = false;
+    if (!analysis_.freeKnots.empty() && !(residual_ < tolerance)) {
+        std::size_t taut = 0;
+        double minAxial = std::numeric_limits<double>::infinity(), maxStrain = 0;
+        for (std::size_t b = 0; b < bars; ++b) {
+            const double rest = system_.restLength[b];
+            const double strain = distance(x_[system_.barA[b]], x_[system_.barB[b]]) / rest - 1;
+            taut += strain > kTautStrain ? 1 : 0;
+            maxStrain = std::max(maxStrain, strain);
+            minAxial = std::min(minAxial, system_.kTension[b] * rest);
+        }
+        warm = static_cast<double>(taut) >= kWarmTautShare * static_cast<double>(bars) &&
+               maxStrain <= kWarmMaxStrain && residual_ <= kWarmMaxResidual;
+        const std::size_t held = system_.knotCount() - analysis_.freeKnots.size();
+        const double meanHeldLoad = totalWeight(system_) / static_cast<double>(std::max<std::size_t>(held, 1));
+        const double scale = std::min(1.0, kSoftLoadFactor * meanHeldLoad / minAxial);
+        if (options_.continuation && !warm && scale <= kMaxSoftScale)
+            softScale = scale;
+    }
+    stats_.softScale = softScale;
+
+    struct Stage {
+        double scale;
+        double tolerance;
+        bool mixed;
+    };
+    std::vector<Stage> stages;
+    if (softScale < 1.0) {
+        stages.push_back({softScale, std::max(kSoftTolerance, tolerance), false});
+        for (double s = softScale * kStageFactor; s < 1 / std::sqrt(kStageFactor); s *= kStageFactor)
+            stages.push_back({s, std::max(kSoftTolerance, tolerance), false});
+    }
+    stages.push_back({1.0, tolerance, warm || softScale < 1.0});
+
+    if (analysis_.freeKnots.empty() || residual_ < tolerance)
+        stopReason_ = "converged";
+    for (std::size_t stageIndex = 0; stageIndex < stages.size() && stopReason_.empty(); ++stageIndex) {
+        const Stage& stage = stages[stageIndex];
+        if (stageIndex > 0 || stage.scale != 1.0) {
+            // Tensions of the previous stage's equilibrium (or of the warm start) seed the
+            // mixed stage; then the new stiffness.
+            if (stage.mixed)
+                elasticTensions();
+            setScale(stage.scale);
+            residual_ = evaluate(x_);
+        } else if (stage.mixed) {
+            elasticTensions();
+        }
+        bool mixed = stage.mixed;
+        double best = residual_;
+        int sinceBest = 0;
+        shift_ = kMinShift;
+        const std::int64_t stageStart = steps_;
+        int exactPause = 0; // iterations left before the exact Hessian is tried again
+
+        while (!(residual_ < stage.tolerance)) {
+            if (stopRequested())
+                break;
+            report(false);
+
+            // The exact Hessian first (a slack bar's negative geometric stiffness included: near
+            // a stable equilibrium with slack bars only it converges quadratically); when it is
+            // not positive definite, the projected one.
+            const bool exact = exactPause == 0;
+            assemble(mixed, exact);
+            bool factored = factorize();
+            if (!factored && exact) {
+                exactPause = kExactPause;
+                assemble(mixed, false);
+                factored = factorize();
+            } else if (exactPause > 0) {
+                --exactPause;
+            }
+            while (!factored && shift_ < kMaxShift) {
+                shift_ = std::max(shift_ * 10, kFailShift);
+                factored = factorize();
+            }
+            ++steps_;
+            if (!factored) {
+                stopReason_ = "diverged";
+                break;
+            }
+            solve();
+            double slope = 0;
+            for (std::uint32_t j : analysis_.freeKnots)
+                slope += force_[j].dot(step_[j]);
+
+            double alpha = 1;
+            bool accepted = false;
+            if (mixed) {
+                for (int k = 0; k < kMaxBacktracks && !accepted; ++k, alpha *= 0.5) {
+                    for (std::uint32_t j : analysis_.freeKnots)
+                        trial_[j] = x_[j] + step_[j] * alpha;
+                    const double r = evaluate(trial_);
+                    accepted = r < kMixedGrowth * best;
+                    if (accepted)
+                        break;
+                }
+            } else if (windy_) {
+                const double merit = meritOf(x_);
+                for (int k = 0; k < kMaxBacktracks && !accepted; ++k, alpha *= 0.5) {
+                    for (std::uint32_t j : analysis_.freeKnots)
+                        trial_[j] = x_[j] + step_[j] * alpha;
+                    accepted = meritOf(trial_) <= (1 - 2 * kArmijo * alpha) * merit;
+                    if (accepted)
+                        break;
+                }
+            } else if (slope > 0) {
+                for (int k = 0; k < kMaxBacktracks; ++k) {
+                    const double change = energyChange(alpha);
+                    if (std::isfinite(change) && change <= -kArmijo * alpha * slope) {
+                        accepted = true;
+                        break;
+                    }
+                    // Minimiser of the parabola through E(0), E'(0) = -slope and E(alpha),
+                    // kept within [alpha / 10, alpha / 2].
+                    double next = 0.5 * alpha;
+                    if (std::isfinite(change)) {
+                        const double curvature = change + slope * alpha;
+                        if (curvature > 0)
+                            next = std::clamp(slope * alpha * alpha / (2 * curvature), 0.1 * alpha,
+                                              0.5 * alpha);
+                    }
+                    alpha = next;
+                }
+            }
+            if (!accepted) {
+                // No acceptable step along this direction: regularize more and try again from
+                // the same positions.
+                shift_ = std::max(shift_ * 10, kFailShift);
+                if (shift_ > kMaxShift) {
+                    stopReason_ = "diverged";
+                    break;
+                }
+                residual_ = evaluate(x_);
+                continue;
+            }
+            if (alpha < kSmallStep && steps_ > stageStart + 1) // a poor model: regularize more
+                shift_ = std::max(shift_ * 10, kFailShift);
+            takeStep(alpha, mixed);
+            residual_ = evaluate(x_);
+            if (alpha == 1.0)
+                shift_ = std::max(shift_ * 0.1, kMinShift);
+            if (mixed) {
+                if (residual_ < best) {
+                    best = residual_;
+                    sinceBest = 0;
+                } else if (++sinceBest >= kMixedPatience) {
+                    mixed = false; // stalled: the energy line search always makes progress
+                }
+            }
+        }
+        if (stageIndex + 1 < stages.size())
+            stats_.softIterations = steps_;
+    }
+    if (stopReason_.empty())
+        stopReason_ = "converged";
+
+    // The answer is judged by the project's own measure on exactly the positions returned.
+    for (std::uint32_t j : analysis_.freeKnots)
+        if (!x_[j].isFinite()) // cannot happen: only finite trial states are accepted
+            x_[j] = system_.position[j];
+    std::copy(x_.begin(), x_.end(), system_.position.begin());
+    RelaxResult result;
+    result.backend = "fast";
+    result.residual = residual(system_, options_.wind);
+    ++evaluations_;
+    result.converged = result.residual < tolerance;
+    if (stopReason_ == "converged" && !result.converged)
+        stopReason_ = "diverged";
+    result.stopReason = stopReason_;
+    result.steps = steps_;
+    result.forceEvaluations = evaluations_;
+    result.seconds = secondsSince(start_);
+    stats_.iterations = steps_;
+    setScale(1.0);
+    residual_ = result.residual;
+    report(true);
+    return result;
+}
+
+} // namespace
+
+FastRelaxer::FastRelaxer() = default;
+FastRelaxer::~FastRelaxer() = default;
+
+RelaxResult FastRelaxer::relax(MassSpringSystem& system, const RelaxOptions& options) {
+    const auto start = Clock::now();
+    validate(options);
+    ForceField check(system); // validates the system (UserError naming the first problem)
+    const std::size_t knots = system.knotCount();
+    std::size_t fixedCount = 0;
+    for (std::size_t j = 0; j < knots; ++j) {
+        if (!system.position[j].isFinite())
+            throw UserError("mass-spring system: knot " + std::to_string(j) +
+                            " has a non-finite position");
+        fixedCount += system.fixed[j] ? 1 : 0;
+    }
+    if (fixedCount == 0 && knots > 0)
+        throw UserError("mass-spring system: no knot is fixed, so the net has no equilibrium "
+                        "(it would fall)");
+
+    statistics_ = NewtonStatistics{};
+    if (analysis_ && analysis_->matches(system)) {
+        statistics_.reusedAnalysis = true;
+    } else {
+        const auto t0 = Clock::now();
+        analysis_.reset();
+        analysis_ = std::make_unique<NewtonAnalysis>(system);
+        statistics_.analysisSeconds = secondsSince(t0);
+    }
+    statistics_.factorFlops = analysis_->cholesky.factorFlops();
+    NewtonRun run(system, options, *analysis_, statistics_, start);
+    return run.run();
+}
+
+RelaxResult relaxFast(MassSpringSystem& system, const RelaxOptions& options) {
+    return FastRelaxer().relax(system, options);
+}
+
+} // namespace netsculpt

@@ -1,0 +1,103 @@
+#pragma once
+// The "fast" relaxation backend: Newton's method on the total potential energy of the net,
+//
+//   E(x) = sum over bars of 1/2 k (l - l_eq)^2  -  sum over free knots of m_j g . x_j,
+//
+// whose gradient is minus the force of Eq. 3 (k = k_s when stretched, k_c otherwise; E is C1 and
+// piecewise C2). Why Newton: at a rope's real stiffness (EA = 2e5 N against knots of a few grams)
+// the explicit integration of the paper needs millions of force evaluations, because its step is
+// bounded by the stiffest bar while the shape is set by the softest mode (the weight against the
+// bars' geometric stiffness). Newton's step solves all modes at once; with a sparse Cholesky
+// factorization each step costs a few force evaluations' worth of work per knot times the fill
+// of a nested-dissection ordering (a 2D net: O(n^1.5) flops), and the number of steps does not
+// grow with the stiffness.
+//
+// How:
+// - Unknowns are the free knots only (fixed knots are eliminated).
+// - Hessian per bar: k u u^T + q (I - u u^T), u the bar's direction, q = the geometric stiffness
+//   t / l >= 0. For a slack bar the negative geometric term is dropped (the positive
+//   semidefinite projection), so the Newton matrix is never indefinite; a Levenberg shift mu I is
+//   added when a factorization fails or a step does not pay off.
+// - Globalization: backtracking (Armijo) line search on E, with energy differences computed bar
+//   by bar in a form that keeps their relative accuracy near convergence.
+// - Stiffness continuation: from a cold start (bars unstretched, such as the Eq. 2 geometry) the
+//   net is first relaxed with every stiffness scaled down until strains are a few per cent
+//   (large rotations are then cheap for Newton), then in stages 100 times stiffer each, up to
+//   the material's. A taut net jumps straight from the soft stage to the material; the final
+//   stage is a mixed (tension + position) Newton: its geometric stiffness uses the bars'
+//   tensions carried over from the step before (the linearised elastic tension) instead of
+//   k (l - l_eq) at the new positions, so a step that rotates a stiff bar is not punished for
+//   the second-order stretch it would cause. If it stalls it falls back to the energy line
+//   search. A warm start (most bars already taut) goes to the material's stiffness directly.
+// - Slack bars: each iteration first tries the exact Hessian (the negative geometric stiffness
+//   of compressed bars included), which converges quadratically near a stable equilibrium with
+//   slack parts, and uses the projected one when that is not positive definite.
+// - Linear algebra: SupernodalCholesky (CHOLMOD's METIS ordering and symbolic analysis, done
+//   once per topology and kept by the relaxer between calls; own numeric factorization).
+// - Wind is a position-dependent load without a potential: it enters the force (and so each
+//   Newton step) at the current positions, a fixed point iteration around Newton; with wind the
+//   line search accepts on the residual instead of the energy.
+//
+// Converged means what it means for every backend: the residual of Eq. 3 at the material's
+// stiffness (physics/Forces.h residual(), max over free knots of |F_j| / (m_j |g|)) below the
+// tolerance, computed on exactly the positions returned.
+//
+// Determinism: every pass that threads share writes per-bar or per-knot results and every sum
+// runs in a fixed order on one thread, and the factorization is deterministic by construction,
+// so a run gives the same bits whatever the number of threads and on every rerun.
+//
+// Options: tolerance, maxSeconds, maxSteps (a step = one Newton iteration, i.e. one
+// factorization and solve), threads, cancel, progress, progressInterval, continuation (false:
+// no soft stage) and wind are honoured; previewStiffnessScale and continuationFactor are RK4's
+// and ignored (the soft stage's scale comes from the load, see kSoftLoadFactor).
+
+#include "physics/Relaxer.h"
+
+#include <cstdint>
+#include <memory>
+#include <string_view>
+#include <vector>
+
+namespace netsculpt {
+
+struct NewtonAnalysis; // the topology-dependent part of a run (NewtonRelaxer.cpp)
+
+/// What a FastRelaxer run did beyond RelaxResult, for tests and benchmarks.
+struct NewtonStatistics {
+    std::int64_t softIterations = 0; ///< Newton iterations before the material's stiffness (0: none)
+    std::int64_t iterations = 0;     ///< all Newton iterations (= RelaxResult::steps)
+    std::int64_t factorizations = 0; ///< numeric factorizations, failed ones included
+    std::int64_t failedFactorizations = 0; ///< not positive definite (then the shift grows)
+    double softScale = 1;            ///< stiffness scale of the first soft stage (1 = none)
+    bool reusedAnalysis = false;     ///< the ordering and symbolic analysis came from a previous call
+    double analysisSeconds = 0;      ///< wall time of the analysis (0 when reused)
+    double factorSeconds = 0;        ///< wall time in numeric factorizations
+    double solveSeconds = 0;         ///< wall time in triangular solves
+    double factorFlops = 0;          ///< per factorization
+};
+
+/// The Newton backend ("fast"). Keeps the symbolic analysis of the last system it relaxed and
+/// reuses it when the next one has the same knots, fixed flags and bars (a warm start after a
+/// drag or a material edit), so keep one instance per document.
+class FastRelaxer final : public Relaxer {
+  public:
+    FastRelaxer();
+    ~FastRelaxer() override;
+    FastRelaxer(const FastRelaxer&) = delete;
+    FastRelaxer& operator=(const FastRelaxer&) = delete;
+
+    std::string_view name() const override { return "fast"; }
+    [[nodiscard]] RelaxResult relax(MassSpringSystem& system, const RelaxOptions& options) override;
+
+    /// Of the last relax() call.
+    const NewtonStatistics& statistics() const { return statistics_; }
+
+  private:
+    std::unique_ptr<NewtonAnalysis> analysis_;
+    NewtonStatistics statistics_;
+};
+
+/// FastRelaxer().relax(system, options).
+[[nodiscard]] RelaxResult relaxFast(MassSpringSystem& system, const RelaxOptions& options = {});
+
+} // namespace netsculpt

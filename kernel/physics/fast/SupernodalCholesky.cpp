@@ -1,0 +1,484 @@
+#include "physics/fast/SupernodalCholesky.h"
+
+#include "physics/ThreadPool.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <cholmod.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cassert>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+namespace netsculpt {
+
+namespace {
+
+using MatrixMap = Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic>>;
+using ConstMatrixMap = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic>>;
+using VectorMap = Eigen::Map<Eigen::VectorXd>;
+using StridedRef = Eigen::Ref<Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
+
+constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+// A subtree of the supernodal elimination tree with fewer flops than this share of the whole
+// factorization is one task of the schedule (tiny supernodes are not worth a hand-over).
+constexpr double kTaskShare = 1.0 / 64;
+// Above this many nodes the ordering is nested dissection (METIS), below it AMD.
+constexpr std::size_t kMetisNodes = 2000;
+// CHOLMOD's relaxed amalgamation, in nodes (3 columns each): supernodes of up to kRelaxNodes[0]
+// nodes always merge; up to [1] and [2] while the share of explicit zeros stays under
+// kRelaxZeros[0] and [1]; any while under [2].
+constexpr std::size_t kRelaxNodes[3] = {1, 5, 16};
+constexpr double kRelaxZeros[3] = {0.8, 0.1, 0.05};
+
+/// CHOLMOD's workspace for the duration of an analysis.
+class CholmodCommon {
+  public:
+    CholmodCommon() {
+        cholmod_l_start(&common_);
+        common_.print = 0;
+        common_.error_handler = nullptr;
+    }
+    ~CholmodCommon() { cholmod_l_finish(&common_); }
+    CholmodCommon(const CholmodCommon&) = delete;
+    CholmodCommon& operator=(const CholmodCommon&) = delete;
+    cholmod_common* get() { return &common_; }
+
+  private:
+    cholmod_common common_;
+};
+
+[[noreturn]] void cholmodFailed(const char* what, const cholmod_common* common) {
+    std::string message = "sparse Cholesky analysis: ";
+    message += what;
+    message += " failed (CHOLMOD status ";
+    message += std::to_string(common->status);
+    message += ")";
+    throw std::runtime_error(message);
+}
+
+} // namespace
+
+void SupernodalCholesky::analyse(std::size_t nodes,
+                                 std::span<const std::array<std::uint32_t, 2>> pairs) {
+    analysed_ = false;
+    nodes_ = nodes;
+    pairs_ = pairs.size();
+    dimension_ = 3 * nodes;
+
+    std::vector<std::vector<std::uint32_t>> neighbours(nodes);
+    for (const auto& [i, j] : pairs) {
+        assert(i < nodes && j < nodes && i != j);
+        neighbours[i].push_back(j);
+        neighbours[j].push_back(i);
+    }
+    for (auto& list : neighbours)
+        std::sort(list.begin(), list.end());
+
+    // The node pattern (upper triangle), ordered and analysed by CHOLMOD: nested dissection
+    // (METIS) for large graphs, AMD for small ones (as good there, and METIS's start-up would
+    // dominate), postordered, supernodal. The scalar structure is that of the nodes with every
+    // node expanded to its three coordinates.
+    std::vector<std::int64_t> start(nodes + 1, 0), index;
+    index.reserve(nodes + pairs.size());
+    for (std::size_t j = 0; j < nodes; ++j) {
+        for (std::uint32_t i : neighbours[j])
+            if (i < j)
+                index.push_back(i);
+        index.push_back(static_cast<std::int64_t>(j));
+        start[j + 1] = static_cast<std::int64_t>(index.size());
+    }
+    CholmodCommon common;
+    cholmod_common* c = common.get();
+    cholmod_sparse pattern{};
+    pattern.nrow = pattern.ncol = nodes;
+    pattern.nzmax = index.size();
+    pattern.p = start.data();
+    pattern.i = index.data();
+    pattern.stype = 1;
+    pattern.itype = CHOLMOD_LONG;
+    pattern.xtype = CHOLMOD_PATTERN;
+    pattern.dtype = CHOLMOD_DOUBLE;
+    pattern.sorted = 1;
+    pattern.packed = 1;
+    c->nmethods = 1;
+    c->method[0].ordering = nodes > kMetisNodes ? CHOLMOD_METIS : CHOLMOD_AMD;
+    c->postorder = 1;
+    c->supernodal = CHOLMOD_SUPERNODAL;
+    for (int k = 0; k < 3; ++k) {
+        c->nrelax[k] = kRelaxNodes[k];
+        c->zrelax[k] = kRelaxZeros[k];
+    }
+    cholmod_factor* factor = nullptr;
+    if (nodes > 0) {
+        factor = cholmod_l_analyze(&pattern, c);
+        if (!factor)
+            cholmodFailed("ordering and supernodal symbolic factorization", c);
+        if (!factor->is_super)
+            cholmodFailed("supernodal symbolic factorization", c);
+    }
+    struct FreeFactor {
+        cholmod_common* common;
+        void operator()(cholmod_factor* f) const { cholmod_l_free_factor(&f, common); }
+    };
+    std::unique_ptr<cholmod_factor, FreeFactor> owner(factor, FreeFactor{c});
+
+    const std::size_t supers = factor ? factor->nsuper : 0;
+    perm_.resize(dimension_);
+    superStart_.assign(supers + 1, 0);
+    rowStart_.assign(supers + 1, 0);
+    valueStart_.assign(supers + 1, 0);
+    rows_.clear();
+    if (factor) {
+        const auto* perm = static_cast<const std::int64_t*>(factor->Perm);
+        const auto* super = static_cast<const std::int64_t*>(factor->super);
+        const auto* pi = static_cast<const std::int64_t*>(factor->pi);
+        const auto* s = static_cast<const std::int64_t*>(factor->s);
+        for (std::size_t k = 0; k < nodes; ++k)
+            for (int a = 0; a < 3; ++a)
+                perm_[3 * k + a] = 3 * perm[k] + a;
+        rows_.reserve(3 * static_cast<std::size_t>(pi[supers]));
+        for (std::size_t k = 0; k < supers; ++k) {
+            superStart_[k + 1] = 3 * super[k + 1];
+            for (std::int64_t r = pi[k]; r < pi[k + 1]; ++r)
+                for (int a = 0; a < 3; ++a)
+                    rows_.push_back(3 * s[r] + a);
+            rowStart_[k + 1] = static_cast<std::int64_t>(rows_.size());
+            valueStart_[k + 1] = valueStart_[k] + 9 * (pi[k + 1] - pi[k]) * (super[k + 1] - super[k]);
+        }
+    }
+    owner.reset();
+
+    columnSuper_.assign(dimension_, 0);
+    maxRows_ = 0;
+    for (std::size_t s = 0; s < supers; ++s) {
+        const std::int64_t rowCount = rowStart_[s + 1] - rowStart_[s];
+        maxRows_ = std::max(maxRows_, static_cast<std::size_t>(rowCount));
+        for (std::int64_t k = superStart_[s]; k < superStart_[s + 1]; ++k)
+            columnSuper_[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(s);
+    }
+    auto rowCount = [this](std::size_t s) { return rowStart_[s + 1] - rowStart_[s]; };
+    auto colCount = [this](std::size_t s) { return superStart_[s + 1] - superStart_[s]; };
+    flops_ = 0; // as CHOLMOD counts: the square of each column's entry count
+    for (std::size_t s = 0; s < supers; ++s)
+        for (std::int64_t k = 0; k < colCount(s); ++k)
+            flops_ += static_cast<double>(rowCount(s) - k) * static_cast<double>(rowCount(s) - k);
+
+    // Updates: the rows of supernode d below its own columns, in runs by target supernode.
+    std::vector<std::int64_t> updateCount(supers + 1, 0);
+    std::vector<std::uint32_t> parent(supers, kNone);
+    auto forEachRun = [&](std::size_t d, auto&& visit) {
+        const std::int64_t first = rowStart_[d], cols = colCount(d), count = rowCount(d);
+        for (std::int64_t i = cols; i < count;) {
+            const std::uint32_t target = columnSuper_[static_cast<std::size_t>(rows_[first + i])];
+            std::int64_t e = i + 1;
+            while (e < count && columnSuper_[static_cast<std::size_t>(rows_[first + e])] == target)
+                ++e;
+            visit(target, i, e);
+            i = e;
+        }
+    };
+    for (std::size_t d = 0; d < supers; ++d) {
+        forEachRun(d, [&](std::uint32_t target, std::int64_t, std::int64_t) { ++updateCount[target + 1]; });
+        if (rowCount(d) > colCount(d))
+            parent[d] = columnSuper_[static_cast<std::size_t>(rows_[rowStart_[d] + colCount(d)])];
+    }
+    updateStart_.assign(supers + 1, 0);
+    for (std::size_t s = 0; s < supers; ++s)
+        updateStart_[s + 1] = updateStart_[s] + updateCount[s + 1];
+    updates_.resize(static_cast<std::size_t>(updateStart_[supers]));
+    {
+        std::vector<std::int64_t> next(updateStart_.begin(), updateStart_.end() - 1);
+        for (std::size_t d = 0; d < supers; ++d)
+            forEachRun(d, [&](std::uint32_t target, std::int64_t b, std::int64_t e) {
+                updates_[static_cast<std::size_t>(next[target]++)] =
+                    Update{static_cast<std::uint32_t>(d), static_cast<std::uint32_t>(b),
+                           static_cast<std::uint32_t>(e)};
+            });
+    }
+
+    // Where each input value goes: (row, column) in pivot order, lower triangle.
+    std::vector<std::int64_t> inverse(dimension_);
+    for (std::size_t k = 0; k < dimension_; ++k)
+        inverse[static_cast<std::size_t>(perm_[k])] = static_cast<std::int64_t>(k);
+    const std::size_t valueCount = 9 * (nodes + pairs_);
+    std::vector<std::uint32_t> targetOf(valueCount, kNone);
+    std::vector<std::uint32_t> offsetOf(valueCount, 0);
+    auto place = [&](std::size_t v, std::int64_t row, std::int64_t col) {
+        if (row < col)
+            std::swap(row, col);
+        const std::uint32_t s = columnSuper_[static_cast<std::size_t>(col)];
+        const auto* begin = rows_.data() + rowStart_[s];
+        const auto* end = rows_.data() + rowStart_[s + 1];
+        const auto* at = std::lower_bound(begin, end, row);
+        assert(at != end && *at == row);
+        const std::int64_t offset = (col - superStart_[s]) * rowCount(s) + (at - begin);
+        if (offset > std::numeric_limits<std::uint32_t>::max())
+            throw std::runtime_error("sparse Cholesky analysis: a supernode is too large");
+        targetOf[v] = s;
+        offsetOf[v] = static_cast<std::uint32_t>(offset);
+    };
+    for (std::size_t node = 0; node < nodes; ++node)
+        for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b) {
+                const std::int64_t row = inverse[3 * node + a], col = inverse[3 * node + b];
+                if (row >= col) // the other half of a symmetric diagonal block is the same value
+                    place(9 * node + 3 * a + b, row, col);
+            }
+    for (std::size_t p = 0; p < pairs_; ++p)
+        for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b)
+                place(9 * (nodes + p) + 3 * a + b, inverse[3 * pairs[p][0] + a],
+                      inverse[3 * pairs[p][1] + b]);
+    fillStart_.assign(supers + 1, 0);
+    for (std::uint32_t s : targetOf)
+        if (s != kNone)
+            ++fillStart_[s + 1];
+    for (std::size_t s = 0; s < supers; ++s)
+        fillStart_[s + 1] += fillStart_[s];
+    fillSource_.resize(static_cast<std::size_t>(fillStart_[supers]));
+    fillOffset_.resize(fillSource_.size());
+    {
+        std::vector<std::int64_t> next(fillStart_.begin(), fillStart_.end() - 1);
+        for (std::size_t v = 0; v < valueCount; ++v) {
+            if (targetOf[v] == kNone)
+                continue;
+            const auto k = static_cast<std::size_t>(next[targetOf[v]]++);
+            fillSource_[k] = static_cast<std::uint32_t>(v);
+            fillOffset_[k] = offsetOf[v];
+        }
+    }
+    diagonalOffset_.resize(dimension_);
+    for (std::size_t s = 0; s < supers; ++s)
+        for (std::int64_t k = 0; k < colCount(s); ++k)
+            diagonalOffset_[static_cast<std::size_t>(superStart_[s] + k)] =
+                static_cast<std::uint32_t>(k * rowCount(s) + k);
+
+    // Schedule. Subtree work, children before parents (a parent's index is always larger).
+    std::vector<double> work(supers, 0.0), subtree(supers, 0.0);
+    std::vector<std::uint32_t> firstInSubtree(supers);
+    double total = 0;
+    for (std::size_t s = 0; s < supers; ++s) {
+        const double cols = static_cast<double>(colCount(s));
+        const double below = static_cast<double>(rowCount(s) - colCount(s));
+        work[s] = cols * cols * cols / 3 + below * cols * cols + below * below * cols + 1e3;
+        total += work[s];
+        firstInSubtree[s] = static_cast<std::uint32_t>(s);
+    }
+    std::vector<std::uint32_t> subtreeSize(supers, 1);
+    for (std::size_t s = 0; s < supers; ++s) {
+        subtree[s] += work[s];
+        if (parent[s] != kNone) {
+            subtree[parent[s]] += subtree[s];
+            subtreeSize[parent[s]] += subtreeSize[s];
+            firstInSubtree[parent[s]] = std::min(firstInSubtree[parent[s]], firstInSubtree[s]);
+        }
+    }
+    bool postordered = true;
+    for (std::size_t s = 0; s < supers; ++s)
+        postordered = postordered && firstInSubtree[s] + subtreeSize[s] == s + 1;
+    const double threshold = postordered ? total * kTaskShare : std::numeric_limits<double>::infinity();
+    taskStart_.assign(1, 0);
+    taskSupers_.clear();
+    std::vector<std::uint32_t> taskOf(supers, kNone);
+    for (std::size_t s = 0; s < supers; ++s) {
+        const bool small = subtree[s] < threshold;
+        const bool root = !small || parent[s] == kNone || subtree[parent[s]] >= threshold;
+        if (!root)
+            continue; // runs with the task of its small subtree's root
+        const auto task = static_cast<std::uint32_t>(taskStart_.size() - 1);
+        const std::uint32_t first = small ? firstInSubtree[s] : static_cast<std::uint32_t>(s);
+        for (std::uint32_t k = first; k <= s; ++k) {
+            taskSupers_.push_back(k);
+            taskOf[k] = task;
+        }
+        taskStart_.push_back(static_cast<std::uint32_t>(taskSupers_.size()));
+    }
+    const std::size_t tasks = taskStart_.size() - 1;
+    taskParent_.assign(tasks, kNone);
+    taskWaits_.assign(tasks, 0);
+    for (std::size_t t = 0; t < tasks; ++t) {
+        const std::uint32_t top = taskSupers_[taskStart_[t + 1] - 1];
+        if (parent[top] != kNone) {
+            taskParent_[t] = taskOf[parent[top]];
+            ++taskWaits_[taskParent_[t]];
+        }
+    }
+
+    values_.assign(static_cast<std::size_t>(valueStart_[supers]), 0.0);
+    workers_.clear();
+    analysed_ = true;
+}
+
+bool SupernodalCholesky::factorSupernode(std::size_t s, std::span<const double> values,
+                                         double shift, Worker& worker) {
+    const std::int64_t cols = superStart_[s + 1] - superStart_[s];
+    const std::int64_t rowCount = rowStart_[s + 1] - rowStart_[s];
+    double* block = values_.data() + valueStart_[s];
+    MatrixMap l(block, rowCount, cols);
+    l.setZero();
+    for (std::int64_t k = fillStart_[s]; k < fillStart_[s + 1]; ++k)
+        block[fillOffset_[static_cast<std::size_t>(k)]] = values[fillSource_[static_cast<std::size_t>(k)]];
+    for (std::int64_t k = 0; k < cols; ++k)
+        block[diagonalOffset_[static_cast<std::size_t>(superStart_[s] + k)]] += shift;
+
+    const std::int64_t* rows = rows_.data() + rowStart_[s];
+    for (std::int64_t i = 0; i < rowCount; ++i)
+        worker.position[static_cast<std::size_t>(rows[i])] = i;
+
+    // Left-looking: subtract L_d[rows from begin on] * L_d[begin, end)^T for every descendant d
+    // with rows among this supernode's columns, in increasing d (the fixed order of the sum).
+    for (std::int64_t u = updateStart_[s]; u < updateStart_[s + 1]; ++u) {
+        const Update& update = updates_[static_cast<std::size_t>(u)];
+        const std::size_t d = update.source;
+        const std::int64_t sourceRows = rowStart_[d + 1] - rowStart_[d];
+        const std::int64_t sourceCols = superStart_[d + 1] - superStart_[d];
+        ConstMatrixMap source(values_.data() + valueStart_[d], sourceRows, sourceCols);
+        const std::int64_t m = sourceRows - update.begin, k = update.end - update.begin;
+        if (worker.product.size() < static_cast<std::size_t>(m * k))
+            worker.product.resize(static_cast<std::size_t>(m * k));
+        MatrixMap product(worker.product.data(), m, k);
+        product.noalias() = source.middleRows(update.begin, m) *
+                            source.middleRows(update.begin, k).transpose();
+        const std::int64_t* sourceRowIndex = rows_.data() + rowStart_[d] + update.begin;
+        for (std::int64_t jj = 0; jj < k; ++jj) {
+            double* column = block + (sourceRowIndex[jj] - superStart_[s]) * rowCount;
+            const double* p = product.data() + jj * m;
+            for (std::int64_t ii = jj; ii < m; ++ii)
+                column[worker.position[static_cast<std::size_t>(sourceRowIndex[ii])]] -= p[ii];
+        }
+    }
+
+    StridedRef diagonal = l.topRows(cols);
+    Eigen::LLT<StridedRef> llt(diagonal); // in place: the lower triangle becomes L_ss
+    bool ok = llt.info() == Eigen::Success;
+    for (std::int64_t k = 0; ok && k < cols; ++k)
+        ok = std::isfinite(diagonal(k, k)) && diagonal(k, k) > 0;
+    if (!ok)
+        return false;
+    if (rowCount > cols)
+        diagonal.transpose().triangularView<Eigen::Upper>().solveInPlace<Eigen::OnTheRight>(
+            l.bottomRows(rowCount - cols));
+    return true;
+}
+
+void SupernodalCholesky::runSchedule(std::span<const double> values, double shift,
+                                     ThreadPool* pool) {
+    const std::size_t threads = pool ? static_cast<std::size_t>(pool->size()) : 1;
+    if (workers_.size() != threads) {
+        workers_.assign(threads, Worker{});
+        for (Worker& w : workers_)
+            w.position.assign(dimension_, 0);
+    }
+    const std::size_t supers = superStart_.size() - 1;
+    if (threads == 1 || taskStart_.size() <= 2) {
+        for (std::size_t s = 0; s < supers && !failed_; ++s)
+            failed_ = !factorSupernode(s, values, shift, workers_[0]);
+        return;
+    }
+
+    // Tasks become ready when every task below them is done; any thread may run any ready one.
+    const std::size_t tasks = taskStart_.size() - 1;
+    std::vector<std::uint32_t> waits = taskWaits_;
+    std::vector<std::uint32_t> ready;
+    for (std::size_t t = 0; t < tasks; ++t)
+        if (waits[t] == 0)
+            ready.push_back(static_cast<std::uint32_t>(t));
+    std::mutex mutex;
+    std::size_t remaining = tasks;
+    std::atomic<bool> failed{false};
+    auto loop = [&](Worker& worker) {
+        for (;;) {
+            std::uint32_t task = kNone;
+            {
+                std::lock_guard<std::mutex> lock(mutex);
+                if (remaining == 0 || failed.load(std::memory_order_relaxed))
+                    return;
+                if (!ready.empty()) {
+                    task = ready.back();
+                    ready.pop_back();
+                }
+            }
+            if (task == kNone) {
+                std::this_thread::yield();
+                continue;
+            }
+            for (std::uint32_t k = taskStart_[task]; k < taskStart_[task + 1]; ++k)
+                if (!factorSupernode(taskSupers_[k], values, shift, worker)) {
+                    failed.store(true, std::memory_order_relaxed);
+                    break;
+                }
+            std::lock_guard<std::mutex> lock(mutex);
+            --remaining;
+            const std::uint32_t up = taskParent_[task];
+            if (up != kNone && --waits[up] == 0)
+                ready.push_back(up);
+        }
+    };
+    pool->parallelFor(threads, [&](std::size_t begin, std::size_t end, std::size_t) {
+        for (std::size_t w = begin; w < end; ++w)
+            loop(workers_[w]);
+    });
+    if (failed.load())
+        failed_ = true;
+}
+
+bool SupernodalCholesky::factorize(std::span<const double> values, double shift,
+                                   ThreadPool* pool) {
+    assert(analysed_ && values.size() == 9 * (nodes_ + pairs_) && shift >= 0);
+    failed_ = false;
+    runSchedule(values, shift, pool);
+    return !failed_;
+}
+
+void SupernodalCholesky::solve(std::span<double> b) const {
+    assert(analysed_ && !failed_ && b.size() == dimension_);
+    const std::size_t supers = superStart_.size() - 1;
+    Eigen::VectorXd y(static_cast<Eigen::Index>(dimension_));
+    for (std::size_t k = 0; k < dimension_; ++k)
+        y[static_cast<Eigen::Index>(k)] = b[static_cast<std::size_t>(perm_[k])];
+    Eigen::VectorXd scratch(static_cast<Eigen::Index>(maxRows_));
+    // L y' = y
+    for (std::size_t s = 0; s < supers; ++s) {
+        const std::int64_t cols = superStart_[s + 1] - superStart_[s];
+        const std::int64_t rowCount = rowStart_[s + 1] - rowStart_[s];
+        ConstMatrixMap l(values_.data() + valueStart_[s], rowCount, cols);
+        auto part = y.segment(superStart_[s], cols);
+        l.topRows(cols).triangularView<Eigen::Lower>().solveInPlace(part);
+        const std::int64_t below = rowCount - cols;
+        if (below == 0)
+            continue;
+        auto t = scratch.head(below);
+        t.noalias() = l.bottomRows(below) * part;
+        const std::int64_t* rows = rows_.data() + rowStart_[s] + cols;
+        for (std::int64_t i = 0; i < below; ++i)
+            y[rows[i]] -= t[i];
+    }
+    // L^T x = y'
+    for (std::size_t s = supers; s-- > 0;) {
+        const std::int64_t cols = superStart_[s + 1] - superStart_[s];
+        const std::int64_t rowCount = rowStart_[s + 1] - rowStart_[s];
+        ConstMatrixMap l(values_.data() + valueStart_[s], rowCount, cols);
+        auto part = y.segment(superStart_[s], cols);
+        const std::int64_t below = rowCount - cols;
+        if (below > 0) {
+            auto t = scratch.head(below);
+            const std::int64_t* rows = rows_.data() + rowStart_[s] + cols;
+            for (std::int64_t i = 0; i < below; ++i)
+                t[i] = y[rows[i]];
+            part.noalias() -= l.bottomRows(below).transpose() * t;
+        }
+        l.topRows(cols).transpose().triangularView<Eigen::Upper>().solveInPlace(part);
+    }
+    for (std::size_t k = 0; k < dimension_; ++k)
+        b[static_cast<std::size_t>(perm_[k])] = y[static_cast<Eigen::Index>(k)];
+}
+
+} // namespace netsculpt

@@ -1,0 +1,104 @@
+#pragma once
+// Sparse Cholesky factorization A = L L^T of a symmetric positive definite matrix made of 3x3
+// blocks, one block row and column per node (a knot's three coordinates): the linear algebra of
+// the Newton relaxer (NewtonRelaxer.h).
+//
+// The pattern is analysed once: nested-dissection ordering of the node graph (METIS, through
+// CHOLMOD), then CHOLMOD's supernodal symbolic factorization of the expanded scalar pattern. The
+// numeric factorization is this file's own: a left-looking supernodal one whose dense kernels
+// are Eigen's (the system BLAS that CHOLMOD would call is the slow reference one). Refactoring
+// with new values reuses everything the analysis built.
+//
+// Determinism: every supernode pulls the updates of its descendants in a fixed order, whatever
+// thread runs it and whenever, so the factor and the solutions are bit-identical for any number
+// of threads.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace netsculpt {
+
+class ThreadPool;
+
+class SupernodalCholesky {
+  public:
+    SupernodalCholesky() = default;
+
+    /// Analyses the pattern of a matrix of `nodes` x `nodes` blocks: the diagonal blocks and one
+    /// block for each pair (i, j), i != j, of `pairs` (each unordered pair at most once).
+    void analyse(std::size_t nodes, std::span<const std::array<std::uint32_t, 2>> pairs);
+
+    bool analysed() const { return analysed_; }
+    std::size_t nodes() const { return nodes_; }
+    std::size_t pairs() const { return pairs_; }
+
+    /// Numeric factorization of the matrix whose values are `values`: first the nodes' diagonal
+    /// blocks, then one block per pair in the order given to analyse(), each as 9 doubles, row
+    /// major (the block of pair (i, j) has the rows of node i and the columns of node j; a
+    /// diagonal block must be symmetric). `shift` (>= 0) is added to every diagonal entry.
+    /// Returns false when the matrix is not numerically positive definite (a pivot <= 0 or not
+    /// finite); the factor is then unusable until the next successful call.
+    [[nodiscard]] bool factorize(std::span<const double> values, double shift,
+                                 ThreadPool* pool = nullptr);
+
+    /// Solves A x = b in place for the last successful factorization. b holds 3 * nodes()
+    /// entries, node-major (x, y, z of node 0, then node 1, ...).
+    void solve(std::span<double> b) const;
+
+    /// Size of the factor: stored entries of L (supernodal, some explicit zeros included).
+    std::size_t factorEntries() const { return values_.size(); }
+    /// Floating-point operations of one numeric factorization (CHOLMOD's count).
+    double factorFlops() const { return flops_; }
+
+  private:
+    struct Update {
+        std::uint32_t source; ///< a descendant supernode
+        std::uint32_t begin;  ///< its first row (index into its row list) inside the target's columns
+        std::uint32_t end;    ///< one past its last such row
+    };
+    struct Worker {
+        std::vector<std::int64_t> position; ///< scratch: row -> position in the current supernode
+        std::vector<double> product;        ///< scratch: one update block
+    };
+
+    /// Fills, updates and factors supernode s; false when its pivots are not all > 0.
+    bool factorSupernode(std::size_t s, std::span<const double> values, double shift,
+                         Worker& worker);
+    void runSchedule(std::span<const double> values, double shift, ThreadPool* pool);
+
+    bool analysed_ = false;
+    std::size_t nodes_ = 0, pairs_ = 0, dimension_ = 0;
+    double flops_ = 0;
+
+    // Supernodal structure (CHOLMOD's), rows and columns in pivot order.
+    std::vector<std::int64_t> perm_;          ///< pivot k is original unknown perm_[k]
+    std::vector<std::int64_t> superStart_;    ///< supernode s has columns [superStart_[s], superStart_[s+1])
+    std::vector<std::int64_t> rowStart_;      ///< its rows: rows_[rowStart_[s] .. rowStart_[s+1])
+    std::vector<std::int64_t> valueStart_;    ///< its dense column-major block at values_[valueStart_[s]]
+    std::vector<std::int64_t> rows_;
+    std::vector<std::uint32_t> columnSuper_;  ///< column -> supernode
+    std::vector<std::int64_t> updateStart_;   ///< updates_[updateStart_[s] .. updateStart_[s+1]) into s
+    std::vector<Update> updates_;
+    // Filling a supernode from the input: value index -> offset in its block.
+    std::vector<std::int64_t> fillStart_;
+    std::vector<std::uint32_t> fillSource_;
+    std::vector<std::uint32_t> fillOffset_;
+    std::vector<std::uint32_t> diagonalOffset_; ///< per column: its diagonal entry in its block
+
+    // Schedule: tasks in a topological order; a task is one subtree (small ones, run as a whole)
+    // or one supernode, ready when all the tasks it depends on are done.
+    std::vector<std::uint32_t> taskStart_;   ///< task t runs supernodes taskSupers_[taskStart_[t] .. taskStart_[t+1])
+    std::vector<std::uint32_t> taskSupers_;
+    std::vector<std::uint32_t> taskParent_;  ///< the task waiting for t, or UINT32_MAX
+    std::vector<std::uint32_t> taskWaits_;   ///< how many tasks t waits for
+
+    std::vector<double> values_; ///< the factor's dense blocks
+    std::vector<Worker> workers_;
+    std::size_t maxRows_ = 0;    ///< largest row count of a supernode
+    bool failed_ = false;
+};
+
+} // namespace netsculpt

@@ -1,0 +1,64 @@
+#include "scripting/DocumentFiles.h"
+
+#include "model/Error.h"
+
+#include <cstdlib>
+#include <iostream>
+#include <system_error>
+
+namespace netsculpt::lua {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A private temporary folder, removed with everything in it when this goes.
+class TemporaryFolder {
+  public:
+    TemporaryFolder() {
+        std::string pattern = (fs::temp_directory_path() / "netsculpt-open-XXXXXX").string();
+        if (mkdtemp(pattern.data()) == nullptr) throw UserError("cannot create a temporary folder in " + fs::temp_directory_path().string());
+        path_ = pattern;
+    }
+    ~TemporaryFolder() {
+        std::error_code ignored;
+        fs::remove_all(path_, ignored);
+    }
+    TemporaryFolder(const TemporaryFolder&) = delete;
+    TemporaryFolder& operator=(const TemporaryFolder&) = delete;
+    const fs::path& path() const { return path_; }
+
+  private:
+    fs::path path_;
+};
+
+std::string replaceAll(std::string text, const std::string& from, const std::string& to) {
+    for (std::size_t at = text.find(from); !from.empty() && at != std::string::npos; at = text.find(from, at + to.size()))
+        text.replace(at, from.size(), to);
+    return text;
+}
+
+} // namespace
+
+Document openReadOnly(const fs::path& path, std::vector<std::string>* warnings) {
+    std::error_code error;
+    if (!fs::is_regular_file(path, error)) throw UserError("cannot open " + path.string() + ": no such file");
+    const TemporaryFolder folder;
+    const fs::path copy = folder.path() / path.filename();
+    fs::copy_file(path, copy, error);
+    if (error) throw UserError("cannot read " + path.string() + ": " + error.message());
+    std::vector<std::string> found;
+    try {
+        Document doc = Document::load(copy, &found);
+        for (const std::string& w : found) {
+            const std::string warning = replaceAll(w, copy.string(), path.string());
+            if (warnings) warnings->push_back(warning);
+            else std::cerr << "netsculpt: warning: " << warning << "\n";
+        }
+        return doc;
+    } catch (const UserError& e) {
+        throw UserError(replaceAll(e.what(), copy.string(), path.string()));
+    }
+}
+
+} // namespace netsculpt::lua

@@ -1,0 +1,213 @@
+#include "scripting/LuaSupport.h"
+
+#include "model/Error.h"
+#include "scripting/Handles.h"
+#include "scripting/Limits.h"
+
+#include <cmath>
+#include <new>
+
+namespace netsculpt::lua {
+
+namespace {
+
+bool startsWith(const std::string& text, const std::string& prefix) {
+    return text.compare(0, prefix.size(), prefix) == 0;
+}
+
+std::string quoted(std::string_view text) {
+    constexpr std::size_t kMax = 60;
+    std::string out = "\"";
+    out += text.size() > kMax ? std::string(text.substr(0, kMax)) + "..." : std::string(text);
+    return out + "\"";
+}
+
+} // namespace
+
+std::string currentErrorMessage(const char* name) {
+    const std::string prefix = std::string(name) + ":";
+    try {
+        throw;
+    } catch (const ArgumentError& e) {
+        return e.what();
+    } catch (const UserError& e) {
+        const std::string message = e.what();
+        return startsWith(message, prefix) ? message : prefix + " " + message;
+    } catch (const std::bad_alloc&) {
+        return prefix + " out of memory";
+    } catch (const std::exception& e) {
+        return prefix + " internal error: " + e.what();
+    } catch (...) {
+        return prefix + " internal error (unknown exception)";
+    }
+}
+
+void Call::fail(const std::string& message) const { throw ArgumentError(std::string(name) + ": " + message); }
+
+void Call::bad(const char* arg, int index, const std::string& expected) const {
+    fail(std::string("argument '") + arg + "' must be " + expected + ", got " + describe(L, index));
+}
+
+std::string describe(lua_State* L, int index) {
+    switch (lua_type(L, index)) {
+    case LUA_TNONE:
+    case LUA_TNIL: return "nil";
+    case LUA_TBOOLEAN: return lua_toboolean(L, index) ? "true" : "false";
+    case LUA_TNUMBER:
+        if (lua_isinteger(L, index)) return std::to_string(lua_tointeger(L, index));
+        return formatNumber(lua_tonumber(L, index));
+    case LUA_TSTRING: {
+        std::size_t size = 0;
+        const char* text = lua_tolstring(L, index, &size);
+        return quoted(std::string_view(text, size));
+    }
+    case LUA_TTABLE: return "a table";
+    case LUA_TFUNCTION: return "a function";
+    case LUA_TUSERDATA: {
+        const std::string handle = describeHandle(L, index);
+        return handle.empty() ? "a userdata" : handle;
+    }
+    default: return std::string("a ") + lua_typename(L, lua_type(L, index));
+    }
+}
+
+int invoke(lua_State* L, const char* name, Body body) {
+    int results = 0;
+    bool failed = false;
+    {
+        const BindingExemption exemption(L);
+        try {
+            Call call{L, name};
+            results = body(call);
+        } catch (...) {
+            const std::string message = currentErrorMessage(name);
+            luaL_where(L, 1);
+            lua_pushlstring(L, message.data(), message.size());
+            lua_concat(L, 2);
+            failed = true;
+        }
+    }
+    if (failed) return lua_error(L); // outside the handler and every C++ frame with a destructor
+    return results;
+}
+
+void setFunctions(lua_State* L, std::initializer_list<Function> functions) {
+    for (const Function& f : functions) {
+        lua_pushstring(L, f.name);
+        lua_pushcclosure(L, f.function, 1);
+        lua_setfield(L, -2, f.name);
+    }
+}
+
+std::int64_t checkWhole(const Call& call, int index, const char* arg, std::int64_t min, std::int64_t max) {
+    const std::string range = max == INT32_MAX || max == INT64_MAX
+                                  ? ">= " + std::to_string(min)
+                                  : "from " + std::to_string(min) + " to " + std::to_string(max);
+    const std::string expected = "a whole number " + range;
+    if (lua_type(call.L, index) != LUA_TNUMBER) call.bad(arg, index, expected);
+    std::int64_t value = 0;
+    if (lua_isinteger(call.L, index)) {
+        value = lua_tointeger(call.L, index);
+    } else {
+        const double d = lua_tonumber(call.L, index);
+        if (!(d == std::floor(d)) || !(std::fabs(d) < 9e15)) call.bad(arg, index, expected);
+        value = std::int64_t(d);
+    }
+    if (value < min || value > max) call.bad(arg, index, expected);
+    return value;
+}
+
+double checkFinite(const Call& call, int index, const char* arg) {
+    if (lua_type(call.L, index) != LUA_TNUMBER || !std::isfinite(lua_tonumber(call.L, index)))
+        call.bad(arg, index, "a finite number");
+    return lua_tonumber(call.L, index);
+}
+
+std::string checkString(const Call& call, int index, const char* arg) {
+    if (lua_type(call.L, index) != LUA_TSTRING) call.bad(arg, index, "a string");
+    std::size_t size = 0;
+    const char* text = lua_tolstring(call.L, index, &size);
+    return std::string(text, size);
+}
+
+std::string listOf(const std::vector<std::string>& names) {
+    std::string out;
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        if (i > 0) out += i + 1 == names.size() ? " or " : ", ";
+        out += "\"" + names[i] + "\"";
+    }
+    return out;
+}
+
+std::string checkChoice(const Call& call, int index, const char* arg, const std::vector<std::string>& allowed) {
+    const std::string expected = "one of " + listOf(allowed);
+    if (lua_type(call.L, index) != LUA_TSTRING) call.bad(arg, index, expected);
+    const std::string value = lua_tostring(call.L, index);
+    for (const std::string& a : allowed)
+        if (a == value) return value;
+    call.bad(arg, index, expected);
+}
+
+Vec3 checkVec3(const Call& call, int index, const char* arg) {
+    static const char* const kNames[3] = {"x", "y", "z"};
+    return checkTriple(call, index, arg, kNames, "a point {x, y, z} of three finite numbers");
+}
+
+Vec3 checkTriple(const Call& call, int index, const char* arg, const char* const (&kNames)[3],
+                 const char* expected) {
+    lua_State* L = call.L;
+    index = lua_absindex(L, index);
+    if (lua_type(L, index) != LUA_TTABLE) call.bad(arg, index, expected);
+    const std::size_t length = lua_rawlen(L, index);
+    const bool named = length == 0;
+    if (!named && length != 3)
+        call.fail(std::string("argument '") + arg + "' must be " + expected + ", got a table of " +
+                  std::to_string(length) + " values");
+    double xyz[3] = {0, 0, 0};
+    for (int i = 0; i < 3; ++i) {
+        if (named) lua_pushstring(L, kNames[i]), lua_rawget(L, index);
+        else lua_rawgeti(L, index, i + 1);
+        const bool ok = lua_type(L, -1) == LUA_TNUMBER && std::isfinite(lua_tonumber(L, -1));
+        xyz[i] = lua_tonumber(L, -1);
+        if (!ok) {
+            const std::string got = describe(L, -1);
+            lua_pop(L, 1);
+            call.fail(std::string("argument '") + arg + "' must be " + expected + ", got " + got + " as " +
+                      kNames[i]);
+        }
+        lua_pop(L, 1);
+    }
+    return {xyz[0], xyz[1], xyz[2]};
+}
+
+void pushVec3(lua_State* L, const Vec3& v) {
+    lua_createtable(L, 3, 0);
+    lua_pushnumber(L, v.x);
+    lua_rawseti(L, -2, 1);
+    lua_pushnumber(L, v.y);
+    lua_rawseti(L, -2, 2);
+    lua_pushnumber(L, v.z);
+    lua_rawseti(L, -2, 3);
+}
+
+void setNumber(lua_State* L, const char* key, double value) {
+    lua_pushnumber(L, value);
+    lua_setfield(L, -2, key);
+}
+
+void setInteger(lua_State* L, const char* key, std::int64_t value) {
+    lua_pushinteger(L, value);
+    lua_setfield(L, -2, key);
+}
+
+void setBoolean(lua_State* L, const char* key, bool value) {
+    lua_pushboolean(L, value);
+    lua_setfield(L, -2, key);
+}
+
+void setString(lua_State* L, const char* key, const std::string& value) {
+    lua_pushlstring(L, value.data(), value.size());
+    lua_setfield(L, -2, key);
+}
+
+} // namespace netsculpt::lua

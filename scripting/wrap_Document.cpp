@@ -1,0 +1,165 @@
+// The document: ns.new, ns.open; doc:undo, redo, save, save_snapshot, set_gravity, rename,
+// hash, rails, pieces, can_undo, can_redo.
+
+#include "model/Error.h"
+#include "scripting/Context.h"
+#include "scripting/DocumentFiles.h"
+#include "scripting/Handles.h"
+#include "scripting/Sandbox.h"
+#include "scripting/Wrap.h"
+
+#include <cstdio>
+
+namespace netsculpt::lua {
+
+namespace {
+
+/// Journals a document the script made when the host asks for it (the CLI's `run`).
+void journalIfAsked(lua_State* L, Document& doc) {
+    ScriptContext& ctx = context(L);
+    const std::filesystem::path path = nextJournalPath(ctx);
+    if (path.empty()) return;
+    doc.attachJournal(path);
+    ctx.journals.push_back(path);
+}
+
+int w_new(Call& call) {
+    Document doc;
+    journalIfAsked(call.L, doc);
+    pushDocument(call.L, std::move(doc));
+    return 1;
+}
+
+/// ns.open(path) -> doc, warnings: a journal (replayed) or a snapshot.
+int w_open(Call& call) {
+    const std::string given = checkString(call, 1, "path");
+    const auto path = resolveReadPath(context(call.L), given, call.name);
+    std::vector<std::string> warnings;
+    Document doc = openReadOnly(path, &warnings);
+    journalIfAsked(call.L, doc);
+    pushDocument(call.L, std::move(doc));
+    lua_createtable(call.L, int(warnings.size()), 0);
+    for (std::size_t i = 0; i < warnings.size(); ++i) {
+        lua_pushstring(call.L, warnings[i].c_str());
+        lua_rawseti(call.L, -2, lua_Integer(i + 1));
+    }
+    return 2;
+}
+
+int w_undo(Call& call) {
+    checkDocument(call).undo();
+    return 0;
+}
+
+int w_redo(Call& call) {
+    checkDocument(call).redo();
+    return 0;
+}
+
+int w_can_undo(Call& call) {
+    lua_pushboolean(call.L, checkDocument(call).canUndo());
+    return 1;
+}
+
+int w_can_redo(Call& call) {
+    lua_pushboolean(call.L, checkDocument(call).canRedo());
+    return 1;
+}
+
+/// doc:save(path): the compacted journal, into the output folder. Returns the path written.
+int w_save(Call& call) {
+    Document& doc = checkDocument(call);
+    const auto path = resolveWritePath(context(call.L), checkString(call, 2, "path"), call.name);
+    doc.save(path);
+    lua_pushstring(call.L, path.c_str());
+    return 1;
+}
+
+/// doc:save_snapshot(path): the model and the current (relaxed) positions in one file.
+int w_save_snapshot(Call& call) {
+    Document& doc = checkDocument(call);
+    const auto path = resolveWritePath(context(call.L), checkString(call, 2, "path"), call.name);
+    doc.saveSnapshot(path);
+    lua_pushstring(call.L, path.c_str());
+    return 1;
+}
+
+/// doc:set_gravity{x, y, z} (or {x=, y=, z=}, or three numbers).
+int w_set_gravity(Call& call) {
+    Document& doc = checkDocument(call);
+    Vec3 g;
+    if (lua_type(call.L, 2) == LUA_TNUMBER)
+        g = {checkFinite(call, 2, "x"), checkFinite(call, 3, "y"), checkFinite(call, 4, "z")};
+    else
+        g = checkVec3(call, 2, "gravity");
+    doc.execute(SetGravityCommand{g});
+    return 0;
+}
+
+/// doc:rename{piece = p, name = "..."} or doc:rename{rail = r, name = "..."}.
+int w_rename(Call& call) {
+    Document& doc = checkDocument(call);
+    const TableArgs args(call, 2, {"piece", "rail", "name"});
+    const std::string name = args.string("name", std::nullopt);
+    if (args.has("piece") == args.has("rail")) call.fail("give piece or rail (one of them)");
+    if (args.has("piece")) doc.execute(RenamePieceCommand{pieceArg(args, "piece"), name});
+    else doc.execute(RenameRailCommand{railArg(args, "rail"), name});
+    return 0;
+}
+
+/// doc:hash() -> 16 hex digits: equal hashes = the same sculpture.
+int w_hash(Call& call) {
+    char text[17];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(checkDocument(call).hash()));
+    lua_pushstring(call.L, text);
+    return 1;
+}
+
+int w_rails(Call& call) {
+    const Sculpture& s = checkDocument(call).sculpture();
+    lua_createtable(call.L, int(s.rails.size()), 0);
+    lua_Integer i = 0;
+    for (const auto& [id, rail] : s.rails) {
+        pushRail(call.L, 1, id);
+        lua_rawseti(call.L, -2, ++i);
+    }
+    return 1;
+}
+
+int w_pieces(Call& call) {
+    const Sculpture& s = checkDocument(call).sculpture();
+    lua_createtable(call.L, int(s.pieces.size()), 0);
+    lua_Integer i = 0;
+    for (const auto& [id, piece] : s.pieces) {
+        pushPiece(call.L, 1, id);
+        lua_rawseti(call.L, -2, ++i);
+    }
+    return 1;
+}
+
+} // namespace
+
+void addModuleDocumentFunctions(lua_State* L) {
+    setFunctions(L, {{"new", entry<w_new>}, {"open", entry<w_open>}});
+}
+
+void addDocumentMethods(lua_State* L) {
+    setFunctions(L, {{"undo", entry<w_undo>},
+                     {"redo", entry<w_redo>},
+                     {"can_undo", entry<w_can_undo>},
+                     {"can_redo", entry<w_can_redo>},
+                     {"save", entry<w_save>},
+                     {"save_snapshot", entry<w_save_snapshot>},
+                     {"set_gravity", entry<w_set_gravity>},
+                     {"rename", entry<w_rename>},
+                     {"hash", entry<w_hash>},
+                     {"rails", entry<w_rails>},
+                     {"pieces", entry<w_pieces>}});
+    addRailMethods(L);
+    addPieceMethods(L);
+    addQueryMethods(L);
+    addRelaxMethods(L);
+    addIoMethods(L);
+}
+
+} // namespace netsculpt::lua

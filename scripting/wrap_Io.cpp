@@ -1,0 +1,157 @@
+// Files out: doc:export(path, options), doc:report(), doc:write_report(path);
+// ns.export_formats(), ns.output_dir(), ns.script_dir().
+
+#include "commands/Journal.h"
+#include "io/Export.h"
+#include "io/Report.h"
+#include "scripting/Context.h"
+#include "scripting/Handles.h"
+#include "scripting/Sandbox.h"
+#include "scripting/Wrap.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace netsculpt::lua {
+
+namespace {
+
+/// Pushes JSON as Lua values: objects become tables with string keys, arrays sequences
+/// (1-based), integers integers, null nil.
+void pushJson(lua_State* L, const nlohmann::json& value) {
+    if (!lua_checkstack(L, 3)) throw std::runtime_error("the report is nested too deeply");
+    switch (value.type()) {
+    case nlohmann::json::value_t::object:
+        lua_createtable(L, 0, int(value.size()));
+        for (const auto& [key, item] : value.items()) {
+            pushJson(L, item);
+            lua_setfield(L, -2, key.c_str());
+        }
+        break;
+    case nlohmann::json::value_t::array: {
+        lua_createtable(L, int(value.size()), 0);
+        lua_Integer i = 0;
+        for (const auto& item : value) {
+            pushJson(L, item);
+            lua_rawseti(L, -2, ++i);
+        }
+        break;
+    }
+    case nlohmann::json::value_t::string: lua_pushstring(L, value.get_ref<const std::string&>().c_str()); break;
+    case nlohmann::json::value_t::boolean: lua_pushboolean(L, value.get<bool>()); break;
+    case nlohmann::json::value_t::number_integer: lua_pushinteger(L, value.get<std::int64_t>()); break;
+    case nlohmann::json::value_t::number_unsigned:
+        lua_pushinteger(L, lua_Integer(value.get<std::uint64_t>()));
+        break;
+    case nlohmann::json::value_t::number_float: lua_pushnumber(L, value.get<double>()); break;
+    default: lua_pushnil(L); break;
+    }
+}
+
+const std::vector<std::string> kColourBy = {"piece", "tension"};
+const std::vector<std::string> kViews = {"top", "side", "front", "perspective", "all"};
+
+ExportOptions exportArgs(const Call& call) {
+    ExportOptions o;
+    if (lua_isnoneornil(call.L, 3)) return o;
+    const TableArgs args(call, 3, {"colour_by", "tube_radius", "width", "height", "view"});
+    o.colourBy = args.choice("colour_by", kColourBy, o.colourBy);
+    if (args.has("tube_radius")) {
+        o.tubeRadius = args.finite("tube_radius", std::nullopt);
+        if (o.tubeRadius < 0) {
+            const int at = args.push("tube_radius");
+            call.bad("tube_radius", at, "a number of metres >= 0 (0 = bars as lines)");
+        }
+    }
+    o.width = int(args.whole("width", o.width, 16, 16384));
+    o.height = int(args.whole("height", o.height, 16, 16384));
+    o.view = args.choice("view", kViews, o.view);
+    return o;
+}
+
+std::string extensionOf(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    if (!ext.empty()) ext.erase(0, 1);
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+/// doc:export(path, {colour_by, tube_radius, width, height, view}): format by extension
+/// (ns.export_formats()). Returns the path written.
+int w_export(Call& call) {
+    const Document& doc = checkDocument(call);
+    const std::string given = checkString(call, 2, "path");
+    const ExportOptions options = exportArgs(call);
+    const std::vector<std::string> formats = exportFormats();
+    const std::string ext = extensionOf(given);
+    if (std::find(formats.begin(), formats.end(), ext) == formats.end()) {
+        std::string allowed;
+        for (const std::string& f : formats) allowed += (allowed.empty() ? "." : ", .") + f;
+        call.fail("argument 'path' must end in one of " + allowed + " (the format), got \"" + given + "\"");
+    }
+    const auto path = resolveWritePath(context(call.L), given, call.name);
+    exportFile(doc, path, options);
+    lua_pushstring(call.L, path.c_str());
+    return 1;
+}
+
+/// doc:report() -> the fabrication and load report (DESIGN.md "Lua API") as a table.
+int w_report(Call& call) {
+    pushJson(call.L, buildReport(checkDocument(call)));
+    return 1;
+}
+
+/// doc:write_report(path): the report as .json, .md (Markdown) or .csv (the pieces table),
+/// by extension, into the output folder. Returns the path written.
+int w_write_report(Call& call) {
+    const Document& doc = checkDocument(call);
+    const std::string given = checkString(call, 2, "path");
+    const std::string ext = extensionOf(given);
+    if (ext != "json" && ext != "md" && ext != "csv")
+        call.fail("argument 'path' must end in .json, .md or .csv, got \"" + given + "\"");
+    const auto path = resolveWritePath(context(call.L), given, call.name);
+    const nlohmann::json report = buildReport(doc);
+    const std::string text = ext == "json" ? report.dump(2) + "\n" : ext == "md" ? reportMarkdown(report)
+                                                                                 : reportPiecesCsv(report);
+    writeFileDurably(path, text);
+    lua_pushstring(call.L, path.c_str());
+    return 1;
+}
+
+int w_export_formats(Call& call) {
+    const std::vector<std::string> formats = exportFormats();
+    lua_createtable(call.L, int(formats.size()), 0);
+    for (std::size_t i = 0; i < formats.size(); ++i) {
+        lua_pushstring(call.L, formats[i].c_str());
+        lua_rawseti(call.L, -2, lua_Integer(i + 1));
+    }
+    return 1;
+}
+
+/// ns.output_dir() -> the absolute output folder (where relative save/export paths go).
+int w_output_dir(Call& call) {
+    lua_pushstring(call.L, context(call.L).outputDir.c_str());
+    return 1;
+}
+
+/// ns.script_dir() -> the absolute folder of the running script (where relative reads resolve).
+int w_script_dir(Call& call) {
+    lua_pushstring(call.L, context(call.L).scriptDir.c_str());
+    return 1;
+}
+
+} // namespace
+
+void addIoMethods(lua_State* L) {
+    setFunctions(L, {{"export", entry<w_export>}, {"report", entry<w_report>}, {"write_report", entry<w_write_report>}});
+}
+
+void addModuleIoFunctions(lua_State* L) {
+    setFunctions(L, {{"export_formats", entry<w_export_formats>},
+                     {"output_dir", entry<w_output_dir>},
+                     {"script_dir", entry<w_script_dir>}});
+}
+
+} // namespace netsculpt::lua

@@ -1,0 +1,95 @@
+// Rails: doc:add_rail, doc:import_rails, doc:remove_rail.
+
+#include "io/Import.h"
+#include "scripting/Context.h"
+#include "scripting/Handles.h"
+#include "scripting/Sandbox.h"
+#include "scripting/Wrap.h"
+
+namespace netsculpt::lua {
+
+namespace {
+
+const std::vector<std::string> kSamplings = {"arclength", "parameter"};
+
+CurveSpec curveArgs(const TableArgs& args) {
+    const Call& call = args.call();
+    const bool polyline = args.has("points"), spline = args.has("control");
+    if (polyline == spline)
+        call.fail(polyline ? "give points (a polyline) or control (a B-spline), not both"
+                           : "argument 'points' (a polyline) or 'control' (a B-spline) is missing");
+    CurveSpec spec;
+    spec.spline = spline;
+    spec.closed = args.boolean("closed", false);
+    spec.sampling = args.choice("sampling", kSamplings, "arclength") == "parameter" ? Sampling::Parameter
+                                                                                    : Sampling::ArcLength;
+    if (polyline) {
+        for (const char* key : {"degree", "knots", "weights"})
+            if (args.has(key))
+                call.fail(std::string("argument '") + key + "' belongs to a B-spline (control = {...}); " +
+                          "points = {...} make a polyline");
+        spec.points = args.points("points");
+        return spec;
+    }
+    spec.points = args.points("control");
+    spec.degree = int(args.whole("degree", 3, 1, 7));
+    if (args.has("knots")) spec.knots = args.numbers("knots");
+    if (args.has("weights")) spec.weights = args.numbers("weights");
+    return spec;
+}
+
+/// doc:add_rail{name, points = {{x,y,z}, ...}, closed} or
+/// doc:add_rail{name, degree, control = {...}, knots, weights, closed, sampling}.
+int w_add_rail(Call& call) {
+    Document& doc = checkDocument(call);
+    const TableArgs args(call, 2,
+                         {"name", "points", "control", "degree", "knots", "weights", "closed", "sampling"});
+    AddRailCommand command{args.string("name", std::string()), curveArgs(args)};
+    const CommandResult created = doc.execute(command);
+    pushRail(call.L, 1, created.rails.at(0));
+    return 1;
+}
+
+/// doc:import_rails(path [, {units = "mm"}]) -> {rail, ...}: DXF, OBJ polylines or CSV.
+int w_import_rails(Call& call) {
+    Document& doc = checkDocument(call);
+    const std::string given = checkString(call, 2, "path");
+    ImportOptions options;
+    if (!lua_isnoneornil(call.L, 3)) {
+        const TableArgs args(call, 3, {"units"});
+        options.units = args.choice("units", unitNames(), std::string());
+    }
+    const auto path = resolveReadPath(context(call.L), given, call.name);
+    ImportRailsCommand command{given, importRailsFile(path, options)};
+    const CommandResult created = doc.execute(command);
+    lua_createtable(call.L, int(created.rails.size()), 0);
+    for (std::size_t i = 0; i < created.rails.size(); ++i) {
+        pushRail(call.L, 1, created.rails[i]);
+        lua_rawseti(call.L, -2, lua_Integer(i + 1));
+    }
+    return 1;
+}
+
+/// doc:remove_rail{rail = r} (or doc:remove_rail(r)).
+int w_remove_rail(Call& call) {
+    Document& doc = checkDocument(call);
+    RailId rail;
+    if (lua_type(call.L, 2) == LUA_TUSERDATA) {
+        rail = checkRail(call, 2, "rail");
+    } else {
+        const TableArgs args(call, 2, {"rail"});
+        rail = railArg(args, "rail");
+    }
+    doc.execute(RemoveRailCommand{rail});
+    return 0;
+}
+
+} // namespace
+
+void addRailMethods(lua_State* L) {
+    setFunctions(L, {{"add_rail", entry<w_add_rail>},
+                     {"import_rails", entry<w_import_rails>},
+                     {"remove_rail", entry<w_remove_rail>}});
+}
+
+} // namespace netsculpt::lua

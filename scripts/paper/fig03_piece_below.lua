@@ -1,0 +1,35 @@
+-- Figure 3: a piece below a piece. With gear 1 the child's top row *is* the parent's last row:
+-- the two pieces share those knots, and the child continues the net downwards.
+--
+--   build/tools/netsculpt run scripts/paper/fig03_piece_below.lua --out out/fig03
+--
+-- Writes knots.csv, report.json, figure.png. GalleryTests checks: parent 36 x 10, child 36 x 8;
+-- the CSV lists 36 * 10 + 36 * 8 knots, and the 36 of the child's row 0 stand at the positions
+-- of the parent's row 9 (one knot for both).
+
+local ns = require "netsculpt"
+local quick = os.getenv("NETSCULPT_QUICK") == "1" or (arg ~= nil and arg[1] == "--quick")
+
+local function circle(r, z, n)
+  local points = {}
+  for i = 0, n - 1 do
+    local a = 2 * math.pi * i / n
+    points[#points + 1] = {r * math.cos(a), r * math.sin(a), z}
+  end
+  return points
+end
+
+local doc = ns.new()
+local ring = doc:add_rail{name = "ring", points = circle(1.0, 4.0, 72), closed = true}
+local parent = doc:attach_to_rail{rail = ring, columns = 36, rows = 10, bar = 0.15}
+local child = doc:attach_to_piece{piece = parent, gear = 1, rows = 8, bar = 0.15}
+doc:rename{piece = parent, name = "parent"}
+doc:rename{piece = child, name = "child"}
+-- A soft rope (EA = 100 N, 10 g knots): the figure is about the net's structure, and a soft net
+-- relaxes in seconds.
+for _, piece in ipairs(doc:pieces()) do doc:set_material{piece = piece, stiffness = 100, knot_mass = 0.01} end
+doc:relax{tolerance = 1e-3, max_seconds = quick and 2 or 30}
+
+doc:export("knots.csv")
+doc:write_report("report.json")
+doc:export("figure.png", {width = 1000, height = 750})

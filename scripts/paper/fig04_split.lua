@@ -1,0 +1,35 @@
+-- Figure 4: splitting a tube. A split changes which piece owns which knots, never the net:
+-- splitting the closed tube at column 12 gives two open pieces that share the knots of column 12
+-- and of column 0 (the tube's seam).
+--
+--   build/tools/netsculpt run scripts/paper/fig04_split.lua --out out/fig04
+--
+-- Writes before.csv (the tube) and after.csv (the two parts), report.json, figure.png.
+-- GalleryTests checks: one closed 48-column piece before; after, two open pieces of 13 and 37
+-- columns (13 + 37 = 48 + 2 shared columns) with the same set of knot positions as before.
+
+local ns = require "netsculpt"
+
+local function circle(r, z, n)
+  local points = {}
+  for i = 0, n - 1 do
+    local a = 2 * math.pi * i / n
+    points[#points + 1] = {r * math.cos(a), r * math.sin(a), z}
+  end
+  return points
+end
+
+local doc = ns.new()
+local ring = doc:add_rail{name = "ring", points = circle(1.5, 4.0, 96), closed = true}
+local tube = doc:attach_to_rail{rail = ring, columns = 48, rows = 12, bar = 0.2}
+doc:export("before.csv")
+
+local left, right = doc:split{piece = tube, column = 12}
+doc:rename{piece = left, name = "left part"}
+doc:rename{piece = right, name = "right part"}
+doc:set_colour{piece = right, colour = {0.15, 0.5, 0.75}}
+assert(left == tube, "the first part keeps the tube's id")
+
+doc:export("after.csv")
+doc:write_report("report.json")
+doc:export("figure.png", {width = 1000, height = 750})

@@ -1,0 +1,39 @@
+-- Figure 7: gears. Below a 24-column parent, a child's top row takes g times the parent's
+-- columns: g = 3, 2, 1, 1/2, 1/3 give 72, 48, 24, 12 and 8 columns. Gear-up adds knots between
+-- the shared ones; gear-down skips parent knots.
+--
+--   build/tools/netsculpt run scripts/paper/fig07_gears.lua --out out/fig07
+--
+-- Five rings in a row, each with a parent tube and a child through one gear. Writes knots.csv,
+-- report.json and figure.png. GalleryTests checks each child's columns = gear x 24 (report and CSV).
+
+local ns = require "netsculpt"
+local quick = os.getenv("NETSCULPT_QUICK") == "1" or (arg ~= nil and arg[1] == "--quick")
+
+local function circle(cx, r, z, n)
+  local points = {}
+  for i = 0, n - 1 do
+    local a = 2 * math.pi * i / n
+    points[#points + 1] = {cx + r * math.cos(a), r * math.sin(a), z}
+  end
+  return points
+end
+
+local doc = ns.new()
+local gears = {3, 2, 1, "1/2", "1/3"}
+local bars = {[3] = 0.13, [2] = 0.15, [1] = 0.18, ["1/2"] = 0.3, ["1/3"] = 0.45}
+for i, gear in ipairs(gears) do
+  local ring = doc:add_rail{name = "gear " .. gear, points = circle((i - 3) * 2.6, 0.8, 4.0, 48), closed = true}
+  local parent = doc:attach_to_rail{rail = ring, columns = 24, rows = 6, bar = 0.2}
+  local child = doc:attach_to_piece{piece = parent, gear = gear, rows = 6, bar = bars[gear]}
+  doc:rename{piece = parent, name = "parent " .. i}
+  doc:rename{piece = child, name = "gear " .. gear}
+end
+-- A soft rope (EA = 100 N, 10 g knots): the figure is about the net's structure, and a soft net
+-- relaxes in seconds.
+for _, piece in ipairs(doc:pieces()) do doc:set_material{piece = piece, stiffness = 100, knot_mass = 0.01} end
+doc:relax{tolerance = 1e-3, max_seconds = quick and 2 or 30}
+
+doc:export("knots.csv")
+doc:write_report("report.json")
+doc:export("figure.png", {width = 1400, height = 700, view = "front"})

@@ -1,0 +1,38 @@
+-- Figure 11: connecting a last row to a rail. Two equal tubes hang from equal rings; each one's
+-- last row is tied to a lower ring, the left one straight below (at = 0), the right one turned
+-- by a sixth of the ring against the rail's direction (at = 1/6, reverse), which twists it.
+--
+--   build/tools/netsculpt run scripts/paper/fig11_connect.lua --out out/fig11
+--
+-- Writes knots.csv, report.json, figure.png. GalleryTests checks: every tube has its row 0 and its
+-- last row fixed (2 x 30 fixed knots each in the CSV), the lower rings carry 30 attachments each.
+
+local ns = require "netsculpt"
+local quick = os.getenv("NETSCULPT_QUICK") == "1" or (arg ~= nil and arg[1] == "--quick")
+
+local function circle(cx, r, z, n)
+  local points = {}
+  for i = 0, n - 1 do
+    local a = 2 * math.pi * i / n
+    points[#points + 1] = {cx + r * math.cos(a), r * math.sin(a), z}
+  end
+  return points
+end
+
+local doc = ns.new()
+for i, twist in ipairs{{at = 0, reverse = false}, {at = 1 / 6, reverse = true}} do
+  local x = (i == 1) and -2.0 or 2.0
+  local top = doc:add_rail{name = "top " .. i, points = circle(x, 1.0, 4.5, 60), closed = true}
+  local bottom = doc:add_rail{name = "bottom " .. i, points = circle(x, 1.2, 1.5, 60), closed = true}
+  local tube = doc:attach_to_rail{rail = top, columns = 30, rows = 14, bar = 0.2}
+  doc:connect_to_rail{piece = tube, rail = bottom, at = twist.at, reverse = twist.reverse}
+  doc:rename{piece = tube, name = i == 1 and "straight" or "twisted"}
+end
+-- A soft rope (EA = 100 N, 10 g knots): the figure is about the net's structure, and a soft net
+-- relaxes in seconds.
+for _, piece in ipairs(doc:pieces()) do doc:set_material{piece = piece, stiffness = 100, knot_mass = 0.01} end
+doc:relax{tolerance = 1e-3, max_seconds = quick and 2 or 30}
+
+doc:export("knots.csv")
+doc:write_report("report.json")
+doc:export("figure.png", {width = 1000, height = 750})

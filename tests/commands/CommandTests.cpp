@@ -1,0 +1,433 @@
+// Every command through the Document: apply, undo, redo restore the model (hash) and the compiled
+// system bit for bit; merging; the clean index; every invalid input leaves model, history and
+// journal untouched.
+
+#include "CommandTestSupport.h"
+
+#include <algorithm>
+#include <functional>
+#include <map>
+#include <set>
+
+using namespace netsculpt;
+using namespace netsculpt::test;
+using Catch::Matchers::Contains;
+
+namespace {
+
+struct Case {
+    std::string name;
+    std::function<void(Document&)> setup; ///< extra commands on the fixture before the one tested
+    Command command;
+};
+
+SetBarLengthCommand barLength(std::uint32_t piece, std::optional<int> column, std::optional<int> row, double l) {
+    return SetBarLengthCommand{PieceId(piece), column, row, l};
+}
+
+std::vector<Case> everyCommand() {
+    const auto none = [](Document&) {};
+    const auto child = [](Document& d) { d.execute(hang(1, Gear{2, 1}, 4, 0.3)); };
+    const auto connected = [](Document& d) { d.execute(ConnectToRailCommand{PieceId(1), RailId(3), 0.0, false}); };
+    const auto split = [](Document& d) { d.execute(SplitCommand{PieceId(1), 5}); };
+    Material material;
+    material.stiffness = 1.5e5;
+    material.compressionRatio = 0.02;
+    material.knotMass = 0.003;
+    material.linearDensity = 0.004;
+    ImportRailsCommand import{"rails.csv", {{"a", lineSpec({0, 0, 5}, {1, 0, 5})}, {"b", ringSpec(8, 0.5, 5)}}};
+    return {
+        {"add_rail", none, AddRailCommand{"extra", ringSpec(7, 0.7, 4)}},
+        {"add_rail (B-spline)", none, [] {
+             CurveSpec spec = ringSpec(8, 1.2, 4);
+             spec.spline = true;
+             spec.degree = 3;
+             return Command{AddRailCommand{"smooth", spec}};
+         }()},
+        {"import_rails", none, import},
+        {"remove_rail", none, RemoveRailCommand{RailId(2)}},
+        {"rename_rail", none, RenameRailCommand{RailId(1), "crown"}},
+        {"attach_to_rail", none, attach(3, 12, 4, 0.35)},
+        {"attach_to_rail (open rail)", none, attach(2, 9, 3, 0.4)},
+        {"attach_to_piece gear 2", none, hang(1, Gear{2, 1}, 4, 0.3)},
+        {"attach_to_piece gear 1/3", none, hang(1, Gear{1, 3}, 4, 0.8)},
+        {"split", none, SplitCommand{PieceId(1), 4}},
+        {"split with a child", child, SplitCommand{PieceId(1), 6}},
+        {"set_rows", none, SetRowsCommand{PieceId(1), 9}},
+        {"set_rows of a parent", child, SetRowsCommand{PieceId(1), 3}},
+        {"set_columns", none, SetColumnsCommand{PieceId(1), 16}},
+        {"set_columns below a piece", child, SetColumnsCommand{PieceId(2), 36}},
+        {"set_gear", child, SetGearCommand{PieceId(2), Gear{3, 1}}},
+        {"set_bar_length (whole piece)", none, barLength(1, std::nullopt, std::nullopt, 0.45)},
+        {"set_bar_length (column, seamed)", split, barLength(1, 5, std::nullopt, 0.5)},
+        {"set_bar_length (row)", none, barLength(1, std::nullopt, 5, 0.5)},
+        {"connect_to_rail", none, ConnectToRailCommand{PieceId(1), RailId(3), 0.25, true}},
+        {"disconnect", connected, DisconnectCommand{PieceId(1)}},
+        {"set_material", none, SetMaterialCommand{PieceId(1), material}},
+        {"set_colour", none, SetColourCommand{PieceId(1), Colour{0.1, 0.2, 0.3}}},
+        {"rename_piece", none, RenamePieceCommand{PieceId(1), "skirt"}},
+        {"remove_piece", child, RemovePieceCommand{PieceId(1)}},
+        {"set_gravity", none, SetGravityCommand{Vec3{0.5, 0, -9.7}}},
+    };
+}
+
+} // namespace
+
+TEST_CASE("every command applies, undoes and redoes bit for bit") {
+    for (const Case& c : everyCommand()) {
+        SECTION(c.name) {
+            Document doc = fixtureDocument();
+            c.setup(doc);
+            const std::uint64_t before = doc.hash();
+            const CompiledSculpture compiledBefore = doc.compiled();
+            const std::string name = commandName(c.command);
+
+            const CommandResult result = doc.execute(c.command);
+            const std::uint64_t after = doc.hash();
+            const CompiledSculpture compiledAfter = doc.compiled();
+            CHECK(after != before);
+            CHECK(doc.canUndo());
+            CHECK_FALSE(doc.canRedo());
+            if (name == "add_rail") CHECK(result.rails.size() == 1);
+            if (name == "import_rails") CHECK(result.rails.size() == 2);
+            if (name == "attach_to_rail" || name == "attach_to_piece") CHECK(result.pieces.size() == 1);
+            if (name == "split") {
+                REQUIRE(result.pieces.size() == 2);
+                CHECK(result.pieces[0] == std::get<SplitCommand>(c.command).piece);
+            }
+
+            doc.undo();
+            CHECK(doc.hash() == before);
+            requireSameSystem(doc.compiled(), compiledBefore);
+            CHECK(doc.canRedo());
+
+            doc.redo();
+            CHECK(doc.hash() == after);
+            requireSameSystem(doc.compiled(), compiledAfter);
+
+            // and once more, to be sure nothing accumulates
+            doc.undo();
+            doc.undo();
+            doc.redo();
+            doc.redo();
+            CHECK(doc.hash() == after);
+        }
+    }
+}
+
+TEST_CASE("undo restores exactly the shape the document had, relaxed or not") {
+    Document doc = fixtureDocument();
+    // the tube's last row on a ring 1.4 m below the top one: a net that relaxes in well under a second
+    doc.execute(AddRailCommand{"low", ringSpec(12, 1.0, 1.6)});
+    const CompiledSculpture hanging = doc.compiled();
+    doc.execute(ConnectToRailCommand{PieceId(1), RailId(4), 0.0, false});
+    DocumentRelaxOptions options;
+    options.backend = "rk4";
+    options.solver.maxSeconds = 30;
+    const RelaxResult relaxed = doc.relax(options);
+    REQUIRE(relaxed.converged);
+    CHECK(doc.isRelaxed());
+    CHECK(doc.lastRelax().steps == relaxed.steps);
+    const CompiledSculpture relaxedSystem = doc.compiled();
+    const std::uint64_t hashBefore = doc.hash();
+
+    doc.execute(SetRowsCommand{PieceId(1), 8});
+    CHECK_FALSE(doc.isRelaxed());
+    // the warm start: the knots that still exist keep their relaxed positions
+    const auto& sys = doc.compiled().system;
+    const std::uint32_t k = doc.compiled().knotOf(PieceId(1), 4, 3);
+    CHECK(sameBits(sys.position[k], relaxedSystem.system.position[relaxedSystem.knotOf(PieceId(1), 4, 3)]));
+
+    doc.undo();
+    CHECK(doc.hash() == hashBefore);
+    requireSameSystem(doc.compiled(), relaxedSystem);
+    CHECK(doc.isRelaxed());
+    doc.redo();
+    CHECK(doc.compiled().system.knotCount() == 12 * 8);
+    CHECK_FALSE(doc.isRelaxed());
+    // back past the relaxation: that state had its initial geometry; forward again: relaxed
+    doc.undo();
+    doc.undo();
+    requireSameSystem(doc.compiled(), hanging);
+    CHECK_FALSE(doc.isRelaxed());
+    doc.redo();
+    requireSameSystem(doc.compiled(), relaxedSystem);
+    CHECK(doc.isRelaxed());
+}
+
+TEST_CASE("merged commands are one undo step and equal doing both") {
+    Document merged = fixtureDocument();
+    Document separate = fixtureDocument();
+    const std::uint64_t start = merged.hash();
+    for (int rows : {7, 8, 9, 10}) {
+        merged.execute(SetRowsCommand{PieceId(1), rows}, true);
+        separate.execute(SetRowsCommand{PieceId(1), rows});
+    }
+    CHECK(merged.hash() == separate.hash());
+    requireSameSystem(merged.compiled(), separate.compiled());
+    merged.undo();
+    CHECK(merged.hash() == start); // the whole gesture at once
+    merged.redo();
+    CHECK(merged.hash() == separate.hash());
+
+    SECTION("endGesture closes the run") {
+        merged.endGesture();
+        merged.execute(SetRowsCommand{PieceId(1), 11}, true);
+        merged.undo();
+        CHECK(merged.hash() == separate.hash());
+    }
+    SECTION("another piece, another kind or merge = false start a new step") {
+        merged.execute(hang(1, Gear{1, 1}, 3, 0.4));
+        merged.execute(SetRowsCommand{PieceId(2), 4}, true); // follows a create: its own step
+        merged.execute(SetRowsCommand{PieceId(1), 12}, true); // another piece
+        merged.execute(SetBarLengthCommand{PieceId(1), std::nullopt, std::nullopt, 0.5}, true); // another kind
+        merged.execute(SetBarLengthCommand{PieceId(1), std::nullopt, std::nullopt, 0.55}, true); // merges
+        merged.execute(SetBarLengthCommand{PieceId(1), std::nullopt, std::nullopt, 0.6}, false);
+        int steps = 0;
+        while (merged.canUndo()) {
+            merged.undo();
+            ++steps;
+        }
+        CHECK(steps == 4 + 1 + 5); // fixture (4), the rows gesture (1), then 5 steps
+    }
+    SECTION("canMerge") {
+        CHECK(canMerge(SetGearCommand{PieceId(2), Gear{2, 1}}, SetGearCommand{PieceId(2), Gear{3, 1}}));
+        CHECK(canMerge(SetColumnsCommand{PieceId(2), 3}, SetColumnsCommand{PieceId(2), 4}));
+        CHECK_FALSE(canMerge(SetColumnsCommand{PieceId(2), 3}, SetColumnsCommand{PieceId(3), 4}));
+        CHECK_FALSE(canMerge(SetColumnsCommand{PieceId(2), 3}, SetRowsCommand{PieceId(2), 4}));
+        CHECK_FALSE(canMerge(RenamePieceCommand{PieceId(2), "a"}, RenamePieceCommand{PieceId(2), "b"}));
+    }
+}
+
+TEST_CASE("the clean index follows undo and redo") {
+    Document doc = fixtureDocument();
+    doc.markClean();
+    CHECK(doc.isClean());
+    doc.execute(SetRowsCommand{PieceId(1), 7});
+    CHECK_FALSE(doc.isClean());
+    doc.undo();
+    CHECK(doc.isClean());
+    doc.redo();
+    CHECK_FALSE(doc.isClean());
+    doc.undo();
+    doc.undo();
+    CHECK_FALSE(doc.isClean());
+    doc.redo();
+    CHECK(doc.isClean());
+
+    SECTION("a new branch after the clean point keeps it reachable") {
+        doc.execute(SetRowsCommand{PieceId(1), 9});
+        CHECK_FALSE(doc.isClean());
+        doc.undo();
+        CHECK(doc.isClean());
+    }
+    SECTION("dropping the branch that held the clean state loses it") {
+        doc.execute(SetRowsCommand{PieceId(1), 9});
+        doc.markClean();
+        doc.undo();
+        doc.execute(SetRowsCommand{PieceId(1), 10}); // the clean state was on the dropped branch
+        doc.undo();
+        CHECK_FALSE(doc.isClean());
+        doc.execute(SetRowsCommand{PieceId(1), 9}); // the same model again, but not the saved state
+        CHECK_FALSE(doc.isClean());
+    }
+    SECTION("merging into the clean step makes the document dirty") {
+        doc.execute(SetRowsCommand{PieceId(1), 9}, true);
+        doc.markClean();
+        doc.execute(SetRowsCommand{PieceId(1), 10}, true);
+        CHECK_FALSE(doc.isClean());
+        doc.undo();
+        CHECK_FALSE(doc.isClean());
+    }
+    SECTION("save marks clean") {
+        TempDir dir;
+        doc.execute(SetRowsCommand{PieceId(1), 9});
+        doc.save(dir / "a.netj");
+        CHECK(doc.isClean());
+    }
+}
+
+TEST_CASE("every invalid input is refused with its value, leaving model, history and journal as they were") {
+    struct Bad {
+        Command command;
+        std::string mentions;
+    };
+    const double nan = std::nan("");
+    Material negativeStiffness;
+    negativeStiffness.stiffness = -3;
+    Material badRatio;
+    badRatio.compressionRatio = 2.5;
+    Material nanMass;
+    nanMass.knotMass = nan;
+    CurveSpec onePoint;
+    onePoint.points = {{0, 0, 1}};
+    CurveSpec nanPoint = lineSpec({0, 0, 1}, {nan, 0, 1});
+    AttachToRailArgs both;
+    both.rail = RailId(1);
+    both.columns = 12;
+    both.spacing = 0.3;
+    const std::vector<Bad> cases = {
+        {attach(1, 12, 0, 0.4), "got 0"},
+        {attach(1, 12, -2, 0.4), "-2"},
+        {attach(1, 12, 100001, 0.4), "100001"},
+        {attach(1, 2, 5, 0.4), "got 2"},
+        {attach(1, 12, 5, 0.25), "0.25"},  // bar <= s/2 (s ~ 0.518 m)
+        {attach(1, 12, 5, -1), "-1"},
+        {attach(1, 12, 5, nan), "nan"},
+        {attach(1, 12, 5, 0.0), "got 0"},
+        {attach(9, 12, 5, 0.4), "rail 9"},
+        {attach(0, 12, 5, 0.4), "null rail"},
+        {AttachToRailCommand{both}, "0.3"},
+        {hang(1, Gear{5, 1}, 4, 0.3), "gear 5"},
+        {hang(1, Gear{2, 3}, 4, 0.3), "gear 2/3"},
+        {hang(1, Gear{1, 3}, 4, 0.5), "0.5"},      // s = 3 x 0.518: bar must exceed 0.777
+        {hang(1, Gear{1, 2}, 0, 0.6), "got 0"},
+        {hang(42, Gear{2, 1}, 4, 0.3), "piece 42"},
+        {SplitCommand{PieceId(1), 0}, "got 0"},
+        {SplitCommand{PieceId(1), 12}, "got 12"},
+        {SplitCommand{PieceId(1), -4}, "-4"},
+        {SplitCommand{PieceId(7), 3}, "piece 7"},
+        {SetRowsCommand{PieceId(1), 0}, "got 0"},
+        {SetRowsCommand{PieceId(1), -1}, "-1"},
+        {SetColumnsCommand{PieceId(1), 2}, "got 2"},
+        {SetColumnsCommand{PieceId(1), -5}, "-5"},
+        {SetGearCommand{PieceId(1), Gear{2, 1}}, "piece 1"}, // hangs from a rail
+        {SetBarLengthCommand{PieceId(1), std::nullopt, std::nullopt, 0.2}, "0.2"},
+        {SetBarLengthCommand{PieceId(1), std::nullopt, std::nullopt, -0.4}, "-0.4"},
+        {SetBarLengthCommand{PieceId(1), std::nullopt, std::nullopt, nan}, "nan"},
+        {SetBarLengthCommand{PieceId(1), 5, std::nullopt, 0.5}, "got 5"},
+        {SetBarLengthCommand{PieceId(1), std::nullopt, 3, 0.5}, "got 3"},
+        {SetBarLengthCommand{PieceId(1), 0, 0, 0.5}, "column 0, row 0"},
+        {ConnectToRailCommand{PieceId(1), RailId(3), nan, false}, "nan"},
+        {ConnectToRailCommand{PieceId(1), RailId(2), 0, false}, "rail 2"}, // a tube on an open rail
+        {ConnectToRailCommand{PieceId(1), RailId(8), 0, false}, "rail 8"},
+        {DisconnectCommand{PieceId(1)}, "piece 1"},
+        {SetMaterialCommand{PieceId(1), negativeStiffness}, "-3"},
+        {SetMaterialCommand{PieceId(1), badRatio}, "2.5"},
+        {SetMaterialCommand{PieceId(1), nanMass}, "nan"},
+        {SetColourCommand{PieceId(1), Colour{1.5, 0, 0}}, "1.5"},
+        {SetColourCommand{PieceId(1), Colour{0, nan, 0}}, "nan"},
+        {RenamePieceCommand{PieceId(1), "two\nlines"}, "two"},
+        {RenamePieceCommand{PieceId(3), "x"}, "piece 3"},
+        {RenameRailCommand{RailId(5), "x"}, "rail 5"},
+        {RemovePieceCommand{PieceId(42)}, "piece 42"},
+        {RemovePieceCommand{PieceId(0)}, "null piece"},
+        {RemoveRailCommand{RailId(1)}, "rail 1"}, // in use by piece 1
+        {RemoveRailCommand{RailId(77)}, "rail 77"},
+        {SetGravityCommand{Vec3{0, 0, 0}}, "gravity"},
+        {SetGravityCommand{Vec3{0, nan, -9.81}}, "nan"},
+        {AddRailCommand{"one point", onePoint}, "rail"},
+        {AddRailCommand{"nan", nanPoint}, "nan"},
+        {ImportRailsCommand{"empty.dxf", {}}, "empty.dxf"},
+    };
+    TempDir dir;
+    Document doc = fixtureDocument();
+    doc.execute(attach(3, 12, 2, 0.4)); // piece 2; removed so that "piece 2 was removed" is testable
+    doc.execute(RemovePieceCommand{PieceId(2)});
+    doc.attachJournal(dir / "j.netj");
+    doc.markClean();
+    const std::string journalBefore = readBytes(dir / "j.netj");
+    const std::uint64_t hashBefore = doc.hash();
+    const std::string luaBefore = doc.toLua();
+    const CompiledSculpture compiledBefore = doc.compiled();
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        const Bad& bad = cases[i];
+        INFO("case " << i << ": " << commandName(bad.command));
+        std::string message;
+        try {
+            doc.execute(bad.command, true);
+        } catch (const UserError& e) {
+            message = e.what();
+        }
+        INFO("message: " << message);
+        REQUIRE_FALSE(message.empty());
+        CHECK_THAT(message, Contains(bad.mentions));
+        CHECK(doc.hash() == hashBefore);
+        CHECK(readBytes(dir / "j.netj") == journalBefore);
+        CHECK(doc.isClean());
+        CHECK_FALSE(doc.canRedo());
+    }
+    CHECK(doc.toLua() == luaBefore);
+    requireSameSystem(doc.compiled(), compiledBefore);
+    // a removed piece is named as removed
+    CHECK_THROWS_WITH(doc.execute(SetRowsCommand{PieceId(2), 3}), Contains("piece 2 was removed"));
+    // undo/redo past the ends
+    Document empty;
+    CHECK_THROWS_AS(empty.undo(), UserError);
+    CHECK_THROWS_AS(empty.redo(), UserError);
+    // the history still works after all those failures
+    doc.undo();
+    doc.redo();
+    CHECK(doc.hash() == hashBefore);
+}
+
+TEST_CASE("gear junctions and seams share knots in the compiled system") {
+    const double bars[] = {0.8, 0.8, 0.4, 0.3, 0.3}; // by gear: 1/3, 1/2, 1, 2, 3
+    const Gear gears[] = {{1, 3}, {1, 2}, {1, 1}, {2, 1}, {3, 1}};
+    for (int g = 0; g < 5; ++g) {
+        const Gear gear = gears[g];
+        SECTION("gear " + toString(gear)) {
+            Document doc = fixtureDocument();
+            const std::size_t parentKnots = doc.compiled().system.knotCount();
+            doc.execute(hang(1, gear, 3, bars[g]));
+            const CompiledSculpture& c = doc.compiled();
+            const int childColumns = 12 * gear.num / gear.den;
+            CHECK(c.pieces.at(PieceId(2)).columns == childColumns);
+            // gear up: every g-th top knot is the parent's; gear down: all are, every g-th parent knot
+            int shared = 0;
+            std::set<std::uint32_t> parentLast;
+            for (int col = 0; col < 12; ++col) parentLast.insert(c.knotOf(PieceId(1), 5, col));
+            for (int col = 0; col < childColumns; ++col) {
+                const std::uint32_t k = c.knotOf(PieceId(2), 0, col);
+                const bool isShared = parentLast.count(k) > 0;
+                shared += isShared;
+                if (gear.den == 1) {
+                    CHECK(isShared == (col % gear.num == 0));
+                    if (isShared) CHECK(k == c.knotOf(PieceId(1), 5, col / gear.num));
+                } else {
+                    CHECK(k == c.knotOf(PieceId(1), 5, col * gear.den));
+                }
+            }
+            CHECK(shared == std::min(12, childColumns));
+            const std::size_t newKnots = std::size_t(childColumns) * 3 - std::size_t(shared);
+            CHECK(c.system.knotCount() == parentKnots + newKnots);
+        }
+    }
+}
+
+TEST_CASE("a split through the document changes no knot, bar or rest length") {
+    Document doc = fixtureDocument();
+    doc.execute(hang(1, Gear{2, 1}, 3, 0.3));
+    doc.execute(ConnectToRailCommand{PieceId(2), RailId(3), 0.0, false});
+    const CompiledSculpture before = doc.compiled();
+    const CommandResult parts = doc.execute(SplitCommand{PieceId(1), 5});
+    REQUIRE(parts.pieces.size() == 2);
+    doc.execute(SplitCommand{parts.pieces[1], 3});
+    const CompiledSculpture after = doc.compiled();
+    REQUIRE(after.system.knotCount() == before.system.knotCount());
+    REQUIRE(after.system.barCount() == before.system.barCount());
+    const auto pairs = [](const CompiledSculpture& c) {
+        std::multiset<std::pair<std::array<double, 3>, std::array<double, 6>>> out;
+        const auto& s = c.system;
+        for (std::size_t b = 0; b < s.barCount(); ++b) {
+            Vec3 a = s.position[s.barA[b]], z = s.position[s.barB[b]];
+            if (std::tie(a.x, a.y, a.z) > std::tie(z.x, z.y, z.z)) std::swap(a, z);
+            out.insert({{s.restLength[b], s.kTension[b], s.kCompression[b]}, {a.x, a.y, a.z, z.x, z.y, z.z}});
+        }
+        return out;
+    };
+    CHECK(pairs(after) == pairs(before));
+    std::multiset<std::array<double, 4>> knotsBefore, knotsAfter;
+    for (std::size_t k = 0; k < before.system.knotCount(); ++k) {
+        const Vec3& p = before.system.position[k];
+        knotsBefore.insert({p.x, p.y, p.z, before.system.mass[k]});
+        const Vec3& q = after.system.position[k];
+        knotsAfter.insert({q.x, q.y, q.z, after.system.mass[k]});
+    }
+    CHECK(knotsAfter == knotsBefore);
+    // three parts now; the seam at column 0 of the closed piece makes a ring of seams
+    CHECK(doc.sculpture().seams.size() == 3);
+    doc.undo();
+    doc.undo();
+    requireSameSystem(doc.compiled(), before);
+}

@@ -1,0 +1,92 @@
+// The window-free camera: projection agrees with the matrices the renderer uses, rays go back
+// through the pixels they came from, framing keeps the whole box in view, and mouse gestures move it.
+
+#include "InteractionTestSupport.h"
+
+using namespace netsculpt;
+using namespace netsculpt::test;
+
+namespace {
+
+/// Pixel of p through the view and projection matrices (what the GPU does).
+std::array<double, 2> throughMatrices(const Camera& c, const Vec3& p) {
+    const Mat4 m = c.projection() * c.view();
+    double clip[4];
+    for (int r = 0; r < 4; ++r) clip[r] = m(r, 0) * p.x + m(r, 1) * p.y + m(r, 2) * p.z + m(r, 3);
+    return {(clip[0] / clip[3] + 1) * 0.5 * c.width(), (1 - clip[1] / clip[3]) * 0.5 * c.height()};
+}
+
+} // namespace
+
+TEST_CASE("camera: project agrees with view x projection and rayAt inverts it", "[camera]") {
+    Camera c = fixedCamera();
+    const ScreenPoint centre = c.project(c.target);
+    CHECK(centre.x == Approx(500));
+    CHECK(centre.y == Approx(400));
+    CHECK(centre.depth == Approx(12));
+    for (const Vec3 p : {Vec3{1, 2, 3}, Vec3{-2, 0.5, 0}, Vec3{0.3, -1.7, 2.2}}) {
+        const ScreenPoint sp = c.project(p);
+        REQUIRE(sp.visible);
+        const auto m = throughMatrices(c, p);
+        CHECK(sp.x == Approx(m[0]).margin(1e-9));
+        CHECK(sp.y == Approx(m[1]).margin(1e-9));
+        const Ray ray = c.rayAt(sp.x, sp.y);
+        const Vec3 back = ray.origin + ray.direction * (p - ray.origin).norm();
+        CHECK(distance(back, p) < 1e-9);
+    }
+    // z is up on screen: a point above the target is higher on screen (smaller y).
+    CHECK(c.project(c.target + Vec3{0, 0, 1}).y < 400);
+    // One pixel at the target's depth covers 2 d tan(fov/2) / height metres.
+    CHECK(c.worldPerPixels(c.target, 1) == Approx(2 * 12 * std::tan(c.fovY / 2) / 800));
+    CHECK_FALSE(c.project(c.eye() - c.forward()).visible); // behind the eye
+}
+
+TEST_CASE("camera: frame keeps the box in view; presets look along the axes", "[camera]") {
+    Camera c(640, 480);
+    const Vec3 lo{-3, -1, 0}, hi{2, 4, 6};
+    for (ViewPreset preset : {ViewPreset::Perspective, ViewPreset::Top, ViewPreset::Front, ViewPreset::Side}) {
+        c.setPreset(preset);
+        c.frame(lo, hi);
+        for (int i = 0; i < 8; ++i) {
+            const Vec3 corner{i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z};
+            CHECK(c.project(corner).visible);
+        }
+    }
+    c.setPreset(ViewPreset::Top);
+    CHECK(c.forward().z == Approx(-1).margin(1e-5));
+    CHECK(c.project(c.target + Vec3{0, 1, 0}).y < c.project(c.target).y); // +y up on screen
+    c.setPreset(ViewPreset::Front);
+    CHECK(c.forward().y == Approx(1));
+    CHECK(c.project(c.target + Vec3{1, 0, 0}).x > c.project(c.target).x); // +x to the right
+    c.setPreset(ViewPreset::Side);
+    CHECK(c.forward().x == Approx(-1));
+}
+
+TEST_CASE("camera: drags orbit and pan, the wheel zooms, keys choose views", "[camera]") {
+    Scene scene;
+    Interaction ui(scene.doc, scene.camera);
+    const double yaw = scene.camera.yaw, distance = scene.camera.distance;
+    moveTo(ui, 900, 700); // empty space
+    ui.handle(MousePress{MouseButton::Left, {}});
+    moveTo(ui, 950, 700);
+    ui.handle(MouseRelease{MouseButton::Left, {}});
+    CHECK(scene.camera.yaw == Approx(yaw - 50 * 0.007));
+
+    // A pan drag keeps the point under the cursor under the cursor.
+    const Vec3 target = scene.camera.target;
+    ui.handle(MousePress{MouseButton::Right, {}});
+    moveTo(ui, 900, 650);
+    ui.handle(MouseRelease{MouseButton::Right, {}});
+    CHECK(onScreen(scene.camera, target).x == Approx(500 - 50).margin(1e-6));
+    CHECK(onScreen(scene.camera, target).y == Approx(400 - 50).margin(1e-6));
+
+    ui.handle(Scroll{2});
+    CHECK(scene.camera.distance == Approx(distance * 0.85 * 0.85));
+    ui.handle(KeyPress{'T', {}});
+    CHECK(scene.camera.forward().z < -0.99);
+    ui.handle(KeyPress{keys::Home, {}});
+    const auto [lo, hi] = sceneBounds(scene.doc.sculpture(), scene.doc.compiled());
+    CHECK(onScreen(scene.camera, lo).visible);
+    CHECK(onScreen(scene.camera, hi).visible);
+    CHECK(scene.doc.hash() == Scene().doc.hash()); // the camera never changes the sculpture
+}

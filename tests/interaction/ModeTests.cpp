@@ -1,0 +1,280 @@
+// The studio's modes driven by scripted mouse events against a fixed camera: each gesture gives
+// the expected command, the expected sculpture, and exactly one undo step.
+
+#include "InteractionTestSupport.h"
+
+#include "commands/Journal.h"
+
+using namespace netsculpt;
+using namespace netsculpt::test;
+
+namespace {
+
+std::size_t journalEntries(const std::filesystem::path& path) { return readJournal(path).entries.size(); }
+
+} // namespace
+
+TEST_CASE("new net: a click on the third rail sphere hangs a default piece from that rail", "[interaction]") {
+    Scene scene;
+    Interaction ui(scene.doc, scene.camera);
+    ui.setMode(Mode::NewNet);
+    std::vector<Handle> onCrown;
+    for (const Handle& h : ui.handles())
+        if (h.kind == HandleKind::RailPoint && h.rail == scene.crown) onCrown.push_back(h);
+    REQUIRE(onCrown.size() == 12);
+    const Handle third = onCrown[2];
+    CHECK(third.t == Approx(2.0 / 12));
+    const std::uint64_t before = scene.doc.hash();
+
+    clickHandle(ui, third);
+
+    const Sculpture& s = scene.doc.sculpture();
+    REQUIRE(s.pieces.size() == 2);
+    const Piece& p = s.pieces.rbegin()->second;
+    const double length = s.rail(scene.crown).curve().length();
+    CHECK(p.railTop().rail == scene.crown);
+    CHECK(p.railTop().at == third.t);
+    CHECK(p.columns == defaultColumns(length, true, 0.25));
+    CHECK(p.columns == int(std::round(length / 0.25)));
+    CHECK(p.rows == 10);
+    CHECK(p.bar.at(0) == 0.25);
+    CHECK(ui.selectedPiece() == p.id);
+
+    scene.doc.undo(); // one command, one undo step
+    CHECK(scene.doc.hash() == before);
+}
+
+TEST_CASE("new net: a click on an open rail spans it; a click on a last row hangs a piece with gear 1",
+          "[interaction]") {
+    Scene scene;
+    Interaction ui(scene.doc, scene.camera);
+    ui.setMode(Mode::NewNet);
+    clickHandle(ui, findHandle(ui, [&](const Handle& h) { return h.rail == scene.beam && h.t == 1; }));
+    const Piece& sheet = scene.doc.sculpture().pieces.rbegin()->second;
+    CHECK(sheet.railTop().rail == scene.beam);
+    CHECK(sheet.railTop().at == 0);
+    CHECK(sheet.columns == 2 / 0.25 + 1);
+    CHECK_FALSE(sheet.closed);
+
+    clickHandle(ui, findHandle(ui, [&](const Handle& h) { return h.kind == HandleKind::LastRow && h.piece == scene.net; }));
+    const Piece& child = scene.doc.sculpture().pieces.rbegin()->second;
+    REQUIRE_FALSE(child.onRail());
+    CHECK(child.parentTop().parents == std::vector<PieceId>{scene.net});
+    CHECK(child.parentTop().gear == Gear{1, 1});
+    CHECK(child.columns == 24);
+    CHECK(child.bar.at(0) == 0.35);
+    // The crown net now has a child: it offers no last-row sphere any more.
+    for (const Handle& h : ui.handles()) CHECK_FALSE((h.kind == HandleKind::LastRow && h.piece == scene.net));
+}
+
+TEST_CASE("rows: dragging a last-row sphere down 40 px adds 5 rows as one undo step", "[interaction]") {
+    Scene scene;
+    TempFile journal("rows.netj");
+    scene.doc.attachJournal(journal.path);
+    Interaction ui(scene.doc, scene.camera);
+    ui.setMode(Mode::Rows);
+    REQUIRE(ui.handles().size() == 1);
+    const std::uint64_t before = scene.doc.hash();
+    const std::size_t entriesBefore = journalEntries(journal.path);
+
+    dragHandle(ui, ui.handles().front(), 40);
+
+    CHECK(scene.doc.sculpture().piece(scene.net).rows == 6 + 5);
+    CHECK_FALSE(ui.gestureActive());
+    CHECK(journalEntries(journal.path) > entriesBefore); // every step of the drag is journaled, merged
+    const auto entries = readJournal(journal.path).entries;
+    CHECK(entries.back().merge);
+
+    scene.doc.undo();
+    CHECK(scene.doc.hash() == before);
+    CHECK(scene.doc.sculpture().piece(scene.net).rows == 6);
+    scene.doc.redo();
+    CHECK(scene.doc.sculpture().piece(scene.net).rows == 11);
+
+    SECTION("a drag up removes rows, never below one") {
+        dragHandle(ui, ui.handles().front(), -16);
+        CHECK(scene.doc.sculpture().piece(scene.net).rows == 9);
+        dragHandle(ui, ui.handles().front(), -400);
+        CHECK(scene.doc.sculpture().piece(scene.net).rows == 1);
+    }
+    SECTION("a drag shorter than one row changes nothing and journals nothing") {
+        const std::size_t n = journalEntries(journal.path);
+        dragHandle(ui, ui.handles().front(), 7);
+        CHECK(scene.doc.sculpture().piece(scene.net).rows == 11);
+        CHECK(journalEntries(journal.path) == n);
+    }
+}
+
+TEST_CASE("divide: a click on a top knot splits the piece at that column", "[interaction]") {
+    Scene scene;
+    Interaction ui(scene.doc, scene.camera);
+    ui.setMode(Mode::Divide);
+    CHECK(ui.handles().size() == 23); // a closed piece of 24 columns splits at 1 .. 23
+    const Handle at8 = findHandle(ui, [](const Handle& h) { return h.column == 8; });
+    const std::size_t knots = scene.doc.compiled().system.knotCount();
+
+    clickHandle(ui, at8);
+
+    const Sculpture& s = scene.doc.sculpture();
+    REQUIRE(s.pieces.size() == 2);
+    const auto& created = ui.lastCreated().pieces;
+    REQUIRE(created.size() == 2);
+    CHECK(s.piece(created[0]).columns == 9);
+    CHECK(s.piece(created[1]).columns == 24 - 8 + 1);
+    CHECK(s.seams.size() == 2);
+    CHECK(scene.doc.compiled().system.knotCount() == knots); // a split changes ownership only
+}
+
+TEST_CASE("columns: on a rail a drag up adds columns; below a piece it steps through the gears", "[interaction]") {
+    Scene scene;
+    Interaction ui(scene.doc, scene.camera);
+    ui.setMode(Mode::Columns);
+    dragHandle(ui, ui.handles().front(), -20); // 4 px per column
+    CHECK(scene.doc.sculpture().piece(scene.net).columns == 29);
+    dragHandle(ui, ui.handles().front(), 36);
+    CHECK(scene.doc.sculpture().piece(scene.net).columns == 20);
+
+    AttachToPieceArgs args;
+    args.parent = scene.net;
+    args.gear = Gear{1, 1};
+    args.rows = 4;
+    args.bar = 0.8; // long enough for gear 1/2 (twice the parent's 0.63 m spacing, halved)
+    const PieceId child = scene.doc.execute(AttachToPieceCommand{args}).pieces.front();
+    ui.refresh();
+    const Handle edge = findHandle(ui, [&](const Handle& h) { return h.piece == child; });
+    const std::uint64_t before = scene.doc.hash();
+
+    dragHandle(ui, edge, -24); // one step up: x2
+    CHECK(scene.doc.sculpture().piece(child).parentTop().gear == Gear{2, 1});
+    CHECK(scene.doc.sculpture().piece(child).columns == 40);
+    dragHandle(ui, findHandle(ui, [&](const Handle& h) { return h.piece == child; }), -24); // x3
+    CHECK(scene.doc.sculpture().piece(child).parentTop().gear == Gear{3, 1});
+    dragHandle(ui, findHandle(ui, [&](const Handle& h) { return h.piece == child; }), 72); // 3 -> 1/2
+    CHECK(scene.doc.sculpture().piece(child).parentTop().gear == Gear{1, 2});
+    CHECK(scene.doc.sculpture().piece(child).columns == 10);
+    scene.doc.undo();
+    scene.doc.undo();
+    scene.doc.undo();
+    CHECK(scene.doc.hash() == before); // three drags, three undo steps
+}
+
+TEST_CASE("bar length: a drag down lengthens the bars, a seam moves both partners", "[interaction]") {
+    Scene scene;
+    Interaction ui(scene.doc, scene.camera);
+    ui.setMode(Mode::BarLength);
+    REQUIRE(ui.handles().size() == 1);
+    CHECK_FALSE(ui.handles().front().barColumn.has_value()); // one bar length for a piece alone
+    dragHandle(ui, ui.handles().front(), 50); // 2 mm per px
+    CHECK(scene.doc.sculpture().piece(scene.net).bar.at(0) == Approx(0.45).margin(1e-12));
+    dragHandle(ui, ui.handles().front(), -25);
+    CHECK(scene.doc.sculpture().piece(scene.net).bar.at(7) == Approx(0.40).margin(1e-12));
+
+    const auto parts = scene.doc.execute(SplitCommand{scene.net, 12}).pieces;
+    ui.refresh();
+    CHECK(ui.handles().size() == 2); // the two seams of a split tube
+    const Handle seam = findHandle(ui, [&](const Handle& h) { return h.piece == parts[0]; });
+    REQUIRE(seam.barColumn == 12);
+    dragHandle(ui, seam, -50);
+    const Sculpture& s = scene.doc.sculpture();
+    CHECK(s.piece(parts[0]).bar.at(12) == Approx(0.30).margin(1e-12));
+    CHECK(s.piece(parts[1]).bar.at(0) == Approx(0.30).margin(1e-12));
+    CHECK(s.piece(parts[0]).bar.at(0) == Approx(0.40).margin(1e-12));
+}
+
+TEST_CASE("connect: a last row dropped on a rail sphere connects there", "[interaction]") {
+    Scene scene;
+    Interaction ui(scene.doc, scene.camera);
+    ui.setMode(Mode::Connect);
+    REQUIRE(ui.handles().size() == 1);
+    const Handle source = ui.handles().front();
+    const ScreenPoint from = onScreen(scene.camera, source.position);
+    moveTo(ui, from.x, from.y);
+    ui.handle(MousePress{MouseButton::Left, {}});
+    REQUIRE(ui.dragged().has_value());
+    // While dragging, the spheres are the rail positions it may join (closed rails for a tube).
+    for (const Handle& h : ui.handles()) CHECK(h.kind == HandleKind::ConnectTarget);
+    for (const Handle& h : ui.handles()) CHECK(h.rail != scene.beam);
+    const Handle target = findHandle(ui, [&](const Handle& h) { return h.rail == scene.ring && h.t == 0.25; });
+    const ScreenPoint to = onScreen(scene.camera, target.position);
+    for (int i = 1; i <= 10; ++i) moveTo(ui, from.x + (to.x - from.x) * i / 10, from.y + (to.y - from.y) * i / 10);
+    REQUIRE(ui.hovered() >= 0);
+    CHECK(ui.handles()[std::size_t(ui.hovered())].t == 0.25);
+    ui.handle(MouseRelease{MouseButton::Left, {}});
+
+    const Piece& p = scene.doc.sculpture().piece(scene.net);
+    REQUIRE(p.bottom.has_value());
+    CHECK(p.bottom->rail == scene.ring);
+    CHECK(p.bottom->at == 0.25);
+    CHECK_FALSE(p.bottom->reverse); // the ring winds the way the net does
+    CHECK(ui.handles().empty());    // connected: no free last row left
+}
+
+TEST_CASE("connect: a drop away from every rail changes nothing and journals nothing", "[interaction]") {
+    Scene scene;
+    TempFile journal("connect.netj");
+    scene.doc.attachJournal(journal.path);
+    Interaction ui(scene.doc, scene.camera);
+    ui.setMode(Mode::Connect);
+    const std::uint64_t hash = scene.doc.hash();
+    const auto bytes = std::filesystem::file_size(journal.path);
+    const ScreenPoint from = onScreen(scene.camera, ui.handles().front().position);
+    moveTo(ui, from.x, from.y);
+    ui.handle(MousePress{MouseButton::Left, {}});
+    moveTo(ui, 5, 5); // the window's corner: no rail there
+    CHECK(ui.hovered() == -1);
+    ui.handle(MouseRelease{MouseButton::Left, {}});
+    CHECK(scene.doc.hash() == hash);
+    CHECK(std::filesystem::file_size(journal.path) == bytes);
+    CHECK_FALSE(scene.doc.sculpture().piece(scene.net).bottom.has_value());
+    CHECK(ui.handles().size() == 1); // back to the sources
+}
+
+TEST_CASE("keys: ctrl+z undoes, ctrl+shift+z and ctrl+y redo, letters choose modes", "[interaction]") {
+    Scene scene;
+    Interaction ui(scene.doc, scene.camera);
+    ui.handle(KeyPress{'R', {}});
+    CHECK(ui.mode() == Mode::Rows);
+    dragHandle(ui, ui.handles().front(), 16);
+    CHECK(scene.doc.sculpture().piece(scene.net).rows == 8);
+    const std::uint64_t version = ui.version();
+    ui.handle(KeyPress{'Z', {false, true, false}});
+    CHECK(scene.doc.sculpture().piece(scene.net).rows == 6);
+    CHECK(ui.version() > version);
+    ui.handle(KeyPress{'Z', {true, true, false}});
+    CHECK(scene.doc.sculpture().piece(scene.net).rows == 8);
+    ui.handle(KeyPress{'Z', {false, true, false}});
+    ui.handle(KeyPress{'Y', {false, true, false}});
+    CHECK(scene.doc.sculpture().piece(scene.net).rows == 8);
+    ui.handle(KeyPress{'4', {}});
+    CHECK(ui.mode() == Mode::Rows);
+    ui.handle(KeyPress{'J', {}});
+    CHECK(ui.mode() == Mode::Connect);
+    ui.handle(KeyPress{keys::Escape, {}});
+    CHECK(ui.mode() == Mode::View);
+    CHECK(ui.handles().empty());
+}
+
+TEST_CASE("hover, selection and a refused command", "[interaction]") {
+    Scene scene;
+    Interaction ui(scene.doc, scene.camera);
+    ui.setMode(Mode::Rows);
+    const ScreenPoint sp = onScreen(scene.camera, ui.handles().front().position);
+    moveTo(ui, sp.x + 5, sp.y - 5);
+    CHECK(ui.hovered() == 0);
+    CHECK(ui.hoveredPiece() == scene.net);
+    moveTo(ui, sp.x + 40, sp.y);
+    CHECK(ui.hovered() == -1);
+
+    ui.setMode(Mode::View); // a click on the net selects its piece
+    const ScreenPoint knot = onScreen(scene.camera, scene.doc.compiled().system.position[scene.doc.compiled().knotOf(scene.net, 3, 5)]);
+    moveTo(ui, knot.x, knot.y);
+    ui.handle(MousePress{MouseButton::Left, {}});
+    ui.handle(MouseRelease{MouseButton::Left, {}});
+    CHECK(ui.selectedPiece() == scene.net);
+
+    const std::uint64_t hash = scene.doc.hash();
+    CHECK_FALSE(ui.execute(SetRowsCommand{scene.net, 0}));
+    CHECK(ui.messageIsError());
+    CHECK_THAT(ui.message(), Catch::Matchers::Contains("rows"));
+    CHECK(scene.doc.hash() == hash);
+}

@@ -1,0 +1,150 @@
+// Rails from OBJ and CSV files (io/Import.h): round trips through exportRailsFile, the file
+// formats' rules (headers, rail column, closed rails, units) and bad files.
+
+#include "IoTestSupport.h"
+
+#include "geometry/Curve.h"
+#include "io/Export.h"
+#include "io/Import.h"
+#include "io/Scene.h"
+#include "model/Error.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+using namespace netsculpt;
+using namespace netsculpt::test;
+using Catch::Matchers::Contains;
+
+namespace {
+
+Sculpture threeRails() {
+    Sculpture s;
+    edit(s, [](Sculpture& m) { return addRail(m, "ring top", polygonRail(7, 1.3, 2.5)); });
+    edit(s, [](Sculpture& m) {
+        CurveSpec open;
+        open.points = {
+            {0.1, 0.2, 0.3}, {1.0 / 3.0, 2.0 / 7.0, 1e-17}, {-4.5, 12345.678901234567, 6}};
+        return addRail(m, "open, with comma", open);
+    });
+    edit(s, [](Sculpture& m) {
+        CurveSpec spline;
+        spline.spline = true;
+        spline.degree = 3;
+        spline.closed = true;
+        for (int i = 0; i < 6; ++i)
+            spline.points.push_back({std::cos(i * 1.0), std::sin(i * 1.0), 0.1 * i});
+        return addRail(m, "spline", spline);
+    });
+    return s;
+}
+
+/// The points exportRailsFile writes for a rail (a closed rail's first point is not repeated).
+std::vector<Vec3> exported(const Rail& rail) {
+    return io::railPolyline(rail.curve(), false);
+}
+
+void checkRoundTrip(const Sculpture& s, const std::filesystem::path& file) {
+    exportRailsFile(s, file);
+    const auto rails = importRailsFile(file);
+    REQUIRE(rails.size() == s.rails.size());
+    std::size_t i = 0;
+    for (const auto& [id, rail] : s.rails) {
+        const NamedCurve& back = rails[i++];
+        INFO(file.filename().string() << ": " << rail.name);
+        CHECK(back.name == rail.name);
+        CHECK(back.curve.closed == rail.curve().closed());
+        const auto expected = exported(rail);
+        REQUIRE(back.curve.points.size() == expected.size());
+        for (std::size_t k = 0; k < expected.size(); ++k) {
+            // Round-trip precision: the text reads back to the same doubles (1e-12 asked, 0 got).
+            CHECK(distance(back.curve.points[k], expected[k]) <=
+                  1e-12 * std::max(1.0, expected[k].norm()));
+            CHECK(back.curve.points[k] == expected[k]);
+        }
+    }
+}
+
+/// Writes `text` to a file of that name in a folder of its own (test cases may run in parallel).
+std::vector<NamedCurve> importText(const std::string& name, const std::string& text,
+                                   const ImportOptions& options = {}) {
+    const auto file = outputDir("rail-text-" + name) / name;
+    writeText(file, text);
+    return importRailsFile(file, options);
+}
+
+} // namespace
+
+TEST_CASE("rails exported to CSV and OBJ read back to the same points") {
+    const Sculpture s = threeRails();
+    const auto dir = outputDir("rail-round-trip");
+    checkRoundTrip(s, dir / "rails.csv");
+    checkRoundTrip(s, dir / "rails.OBJ");
+    // A polyline rail is its own vertices, so it comes back as the same rail.
+    const auto rails = importRailsFile(dir / "rails.csv");
+    CHECK(rails[0].curve.points == s.rails.begin()->second.curve().spec().points);
+    CHECK(Curve::build(rails[0].curve).length() ==
+          Approx(s.rails.begin()->second.curve().length()).epsilon(1e-15));
+}
+
+TEST_CASE("CSV rails: one rail per file, or grouped by a rail column") {
+    auto one = importText("single.csv", "0,0,0\n1,0,0\n# a comment\n\n1,2,0\n");
+    REQUIRE(one.size() == 1);
+    CHECK(one[0].name == "single");
+    CHECK_FALSE(one[0].curve.closed);
+    CHECK(one[0].curve.points.size() == 3);
+
+    auto grouped = importText(
+        "grouped.csv",
+        "Z,rail,X,y\r\n1,b,0,0\r\n1,a,5,5\r\n1,b,1,0\r\n1,a,6,5\r\n1,\"a\",6,6\r\n1,a,5,5\r\n");
+    REQUIRE(grouped.size() == 2);
+    CHECK(grouped[0].name == "b");
+    CHECK(grouped[1].name == "a");
+    CHECK(grouped[1].curve.closed); // its last point repeats the first
+    CHECK(grouped[1].curve.points.size() == 3);
+    CHECK(grouped[0].curve.points[1] == Vec3{1, 0, 1});
+
+    ImportOptions mm;
+    mm.units = "mm";
+    auto scaled = importText("mm.csv", "0,0,0\n1000,0,-250\n", mm);
+    CHECK(scaled[0].curve.points[1] == Vec3{1, 0, -0.25});
+}
+
+TEST_CASE("OBJ rails: l elements, named by their object, closed when they end where they start") {
+    auto rails = importText("net.obj", "# test\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0 0.5 0.5 0.5\n"
+                                       "o loop\nl 1 2 3 4 1\no pair\nl 1 3\nl -1 -2/7\n");
+    REQUIRE(rails.size() == 3);
+    CHECK(rails[0].name == "loop");
+    CHECK(rails[0].curve.closed);
+    CHECK(rails[0].curve.points.size() == 4);
+    CHECK(rails[1].name == "pair#1");
+    CHECK(rails[2].name == "pair#2");
+    CHECK(rails[2].curve.points == std::vector<Vec3>{{0, 1, 0}, {1, 1, 0}});
+}
+
+TEST_CASE("bad CSV and OBJ files give an error with the file and line, and no rails") {
+    const auto fails = [](const std::string& name, const std::string& text,
+                          const std::string& what) {
+        INFO(name);
+        CHECK_THROWS_WITH(importText(name, text), Contains(name) && Contains(what));
+    };
+    fails("nan.csv", "0,0,0\n1,nan,0\n", ":2: y is 'nan'");
+    fails("word.csv", "0,0,0\n1,two,0\n", ":2: y 'two' is not a number");
+    fails("short.csv", "0,0,0\n1,0\n", ":2: 2 fields, expected 3");
+    fails("header.csv", "a,b,c\n1,2,3\n", "must name columns x, y and z");
+    fails("empty.csv", "", "holds no points");
+    fails("one.csv", "1,2,3\n", "2 distinct points");
+    fails("binary.csv", std::string("0,0,0\n\0\x01,2\n", 11), "binary data");
+    fails("ref.obj", "v 0 0 0\nv 1 0 0\nl 1 3\n",
+          ":3: vertex reference '3' does not name one of the 2 vertices");
+    fails("inf.obj", "v 0 0 0\nv 1 inf 0\nl 1 2\n", ":2: y is 'inf'");
+    fails("none.obj", "v 0 0 0\nv 1 0 0\n", "no polylines");
+    fails("rails.txt", "0,0,0\n", ".dxf, .obj and .csv");
+    CHECK_THROWS_WITH(importRailsFile(outputDir("rail-missing") / "missing.csv"),
+                      Contains("missing.csv") && Contains("cannot open"));
+    ImportOptions furlongs;
+    furlongs.units = "furlong";
+    CHECK_THROWS_WITH(importText("units.csv", "0,0,0\n1,0,0\n", furlongs),
+                      Contains("furlong") && Contains("mm"));
+}

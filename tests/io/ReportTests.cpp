@@ -1,0 +1,224 @@
+// The fabrication and load report (io/Report.h) on sculptures whose numbers can be checked by
+// hand: counts and rope lengths from the staggering rule, masses, joins, and the force balance
+// after a relaxation.
+
+#include "IoTestSupport.h"
+
+#include "commands/Document.h"
+#include "io/Export.h"
+#include "io/Report.h"
+#include "physics/Forces.h"
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace netsculpt;
+using namespace netsculpt::test;
+using Catch::Matchers::Contains;
+using nlohmann::json;
+
+namespace {
+
+std::size_t lineCount(const std::string& text) {
+    return std::size_t(std::count(text.begin(), text.end(), '\n'));
+}
+
+} // namespace
+
+TEST_CASE("report of a single open sheet: counts, rope length and mass by hand") {
+    // 6 rows x 5 columns on a 1 m rail (knots 0.25 m apart), bars of 0.3 m. Staggering rule: a
+    // row below row 0 has 2 bars up per knot except one knot at an open edge: 2 * 5 - 1 = 9.
+    const int rows = 6, columns = 5;
+    const double bar = 0.3;
+    SheetNet t = sheet(rows, columns, 1.0, bar);
+    const json r = buildReport(t.s, t.compiled);
+    const int bars = (rows - 1) * (2 * columns - 1);
+    const double rope = bar * bars;
+    const Material m;
+    const double mass = m.linearDensity * rope + m.knotMass * rows * columns;
+
+    CHECK(r["knots"] == rows * columns);
+    CHECK(r["bars"] == bars);
+    CHECK(r["rope_length"].get<double>() == Approx(rope).epsilon(1e-14));
+    CHECK(r["total_mass"].get<double>() == Approx(mass).epsilon(1e-14));
+    CHECK(r["total_weight"].get<double>() == Approx(mass * 9.81).epsilon(1e-14));
+    CHECK(r["relaxed"] == false);
+    CHECK(r["force_balance"]["relaxed"] == false);
+    CHECK_THAT(r["force_balance"]["note"].get<std::string>(), Contains("not relaxed"));
+
+    REQUIRE(r["pieces"].size() == 1);
+    const json& p = r["pieces"][0];
+    CHECK(p["id"] == t.piece.value);
+    CHECK(p["knots"] == rows * columns);
+    CHECK(p["bars"] == bars);
+    CHECK(p["rope_length"].get<double>() == Approx(rope).epsilon(1e-14));
+    CHECK(p["mass"].get<double>() == Approx(mass).epsilon(1e-14));
+    CHECK(p["closed"] == false);
+    CHECK(p["bar_axis"] == "column");
+    CHECK(p["bar_lengths"] == std::vector<double>(columns, bar));
+    CHECK(p["top"]["kind"] == "rail");
+    CHECK(p["top"]["rail_name"] == "bar");
+    CHECK(p["bottom"].is_null());
+    CHECK(p["seams"].empty());
+
+    REQUIRE(r["rails"].size() == 1);
+    const json& rail = r["rails"][0];
+    CHECK(rail["length"].get<double>() == 1.0);
+    CHECK(rail["attachments"] == columns);
+    REQUIRE(rail["points"].size() == std::size_t(columns));
+    for (int c = 0; c < columns; ++c) {
+        CHECK(rail["points"][std::size_t(c)]["column"] == c);
+        CHECK(rail["points"][std::size_t(c)]["row"] == 0);
+        CHECK(rail["points"][std::size_t(c)]["t"].get<double>() == Approx(c / 4.0).margin(1e-15));
+    }
+}
+
+TEST_CASE("after a relaxation the rail reactions carry the total weight, to the tolerance") {
+    SheetNet t = sheet(7, 6, 1.2, 0.2, /*soft=*/true);
+    RelaxOptions options;
+    options.tolerance = 1e-7;
+    const RelaxResult result = relaxRk4(t.compiled.system, options);
+    REQUIRE(result.converged);
+    const json r = buildReport(t.s, t.compiled, RelaxStatus{true, result, options.tolerance});
+
+    const double weight = r["total_weight"].get<double>();
+    const json& fb = r["force_balance"];
+    CHECK(r["relaxed"] == true);
+    CHECK(r["residual"].get<double>() < options.tolerance);
+    CHECK(fb["within_tolerance"] == true);
+    CHECK(fb["relative_difference"].get<double>() <= options.tolerance);
+    CHECK(fb["reaction_sum"]["z"].get<double>() == Approx(weight).epsilon(options.tolerance));
+    CHECK(std::abs(fb["reaction_sum"]["x"].get<double>()) <= options.tolerance * weight);
+    CHECK(std::abs(fb["reaction_sum"]["y"].get<double>()) <= options.tolerance * weight);
+
+    const json& rail = r["rails"][0];
+    double sumZ = 0, largest = 0;
+    for (const json& p : rail["points"]) {
+        sumZ += p["reaction"]["z"].get<double>();
+        largest = std::max(largest, p["magnitude"].get<double>());
+        CHECK(p["reaction"]["z"].get<double>() > 0); // the rail holds the net up
+    }
+    CHECK(rail["reaction"]["z"].get<double>() == Approx(sumZ).epsilon(1e-12));
+    CHECK(rail["max_reaction"].get<double>() == largest);
+    // Every held knot is listed once, with its reaction -F_j.
+    const auto reactions = netsculpt::reactions(t.compiled.system);
+    CHECK(rail["points"].size() == 6);
+    CHECK(rail["points"][2]["reaction"]["z"].get<double>() ==
+          reactions[t.compiled.knotOf(t.piece, 0, 2)].z);
+
+    // The largest tension is a bar of row 1 (the top rows carry the most weight), in tension.
+    const auto tensions = barTensions(t.compiled.system);
+    CHECK(r["max_tension"].get<double>() == *std::max_element(tensions.begin(), tensions.end()));
+    CHECK(r["max_tension"].get<double>() > 0);
+    const json& at = r["max_tension_at"];
+    CHECK(at["piece"] == t.piece.value);
+    CHECK(std::min(at["a"]["row"].get<int>(), at["b"]["row"].get<int>()) == 0);
+    CHECK(std::abs(at["a"]["row"].get<int>() - at["b"]["row"].get<int>()) == 1);
+}
+
+TEST_CASE("report of joined pieces: gears, seams, shared knots counted once in the mass") {
+    Tube t = tubeWithChild(12, 5, 1.0, 0.4);
+    auto [a, b] = edit(t.s, [&](Sculpture& s) { return split(s, t.piece, 4); });
+    t.compiled = compileSculpture(t.s);
+    const json r = buildReport(t.s, t.compiled);
+    REQUIRE(r["pieces"].size() == 3);
+    double massSum = 0, ropeSum = 0;
+    std::size_t barSum = 0;
+    for (const json& p : r["pieces"]) {
+        massSum += p["mass"].get<double>();
+        ropeSum += p["rope_length"].get<double>();
+        barSum += p["bars"].get<std::size_t>();
+    }
+    CHECK(massSum == Approx(r["total_mass"].get<double>()).epsilon(1e-13));
+    CHECK(ropeSum == Approx(r["rope_length"].get<double>()).epsilon(1e-13));
+    CHECK(barSum == r["bars"].get<std::size_t>());
+
+    const auto piece = [&](PieceId id) {
+        for (const json& p : r["pieces"])
+            if (p["id"] == id.value)
+                return p;
+        FAIL("no piece " << id.value);
+        return json();
+    };
+    // The child: gear 2 below the (now split) ring: 24 columns, 3 rows; its 12 new row-0 knots
+    // hang from 2 bars each, rows 1 and 2 of a tube have 2 bars up per knot.
+    const json child = piece(t.child);
+    CHECK(child["columns"] == 24);
+    CHECK(child["knots"] == 72);
+    CHECK(child["bars"] == 12 * 2 + 2 * 24 * 2);
+    CHECK(child["rope_length"].get<double>() ==
+          Approx(0.25 * (12 * 2 + 2 * 24 * 2)).epsilon(1e-14));
+    CHECK(child["top"]["kind"] == "piece");
+    CHECK(child["top"]["gear"] == "2");
+    CHECK(child["top"]["parents"].size() == 2);
+    // The split parts are joined by seams at both ends (the ring's seam at column 0 and the cut).
+    const json left = piece(a), right = piece(b);
+    CHECK(left["name"] == "upper");
+    REQUIRE(left["seams"].size() == 2);
+    REQUIRE(right["seams"].size() == 2);
+    for (const json& seam : left["seams"])
+        CHECK(seam["piece"] == b.value);
+    for (const json& seam : right["seams"])
+        CHECK(seam["piece"] == a.value);
+    CHECK(left["knots"].get<int>() + right["knots"].get<int>() ==
+          5 * (12 + 2)); // seam columns in both
+    CHECK(r["rails"][0]["attachments"] == 12);
+}
+
+TEST_CASE("report as Markdown and CSV tables") {
+    SheetNet t = sheet(4, 3, 0.8, 0.3);
+    const json r = buildReport(t.s, t.compiled);
+    const std::string md = reportMarkdown(r);
+    CHECK_THAT(md, Contains("# netsculpt report"));
+    CHECK_THAT(md, Contains("**not relaxed**"));
+    CHECK_THAT(md, Contains("| knots | 12 |"));
+    CHECK_THAT(md, Contains("| bars | 15 |"));
+    CHECK_THAT(md, Contains("| rope length | 4.5 m |"));
+    CHECK_THAT(md, Contains("## Force balance"));
+    CHECK_THAT(md, Contains("| 1 | piece 1 | 4 x 3 | no | 12 | 15 | 4.5 |"));
+    CHECK_THAT(md, Contains("| 1 | bar | 0.8 | no | 3 |"));
+
+    const std::string pieces = reportPiecesCsv(r);
+    CHECK(pieces.rfind(
+              "id,name,rows,columns,closed,knots,bars,rope_length,mass,bar_axis,bar_min,bar_max\n",
+              0) == 0);
+    CHECK(lineCount(pieces) == 2);
+    CHECK_THAT(pieces, Contains("\n1,piece 1,4,3,0,12,15,"));
+    CHECK_THAT(pieces, Contains(",column,0.3,0.3\n"));
+    const std::string points = reportAttachmentsCsv(r);
+    CHECK(points.rfind("rail,piece,row,column,t,fx,fy,fz,magnitude\n", 0) == 0);
+    CHECK(lineCount(points) == 1 + 3);
+    CHECK_THAT(points, Contains("\n1,1,0,2,1,"));
+}
+
+TEST_CASE("a Document's report and export say whether its shape is relaxed") {
+    Document doc;
+    const RailId rail = doc.execute(AddRailCommand{"ring", polygonRail(10, 0.8, 2.0)}).rails.at(0);
+    const PieceId piece =
+        doc.execute(AttachToRailCommand{{rail, 10, 0, 6, 0.3, 0, false}}).pieces.at(0);
+    doc.execute(SetMaterialCommand{piece, softRope()});
+    CHECK(buildReport(doc)["relaxed"] == false);
+
+    DocumentRelaxOptions options;
+    options.backend = "rk4";
+    options.solver.tolerance = 1e-6;
+    REQUIRE(doc.relax(options).converged);
+    const nlohmann::json r = buildReport(doc);
+    CHECK(r["relaxed"] == true);
+    CHECK(r["relax"]["converged"] == true);
+    CHECK(r["force_balance"]["within_tolerance"] == true);
+    CHECK(r["rails"][0]["attachments"] == 10);
+    CHECK(r["pieces"][0]["bars"] == 2 * 10 * 5);
+
+    const auto dir = outputDir("document");
+    exportFile(doc, dir / "doc.json");
+    const auto json = nlohmann::json::parse(readText(dir / "doc.json"));
+    CHECK(json["relaxed"] == true);
+    CHECK(json["report"]["force_balance"]["within_tolerance"] == true);
+    const auto& p = json["knots"][20]["position"];
+    CHECK(Vec3{p[0].get<double>(), p[1].get<double>(), p[2].get<double>()} ==
+          doc.compiled().system.position[20]);
+}

@@ -1,0 +1,363 @@
+// The "fast" Newton relaxation (kernel/physics/fast/NewtonRelaxer.h): the same equilibrium as
+// the RK4 path, warm starts, determinism, honest convergence reports, the realistic rope.
+// Comparisons with RK4 use a soft rope (EA 50 N) so that RK4 converges in well under a second.
+#include "model/Compiler.h"
+#include "model/Edits.h"
+#include "model/Error.h"
+#include "physics/Forces.h"
+#include "physics/ReferenceNets.h"
+#include "physics/Relaxer.h"
+#include "physics/fast/NewtonRelaxer.h"
+
+#include <Eigen/Dense>
+#include <catch2/catch.hpp>
+
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <numbers>
+
+using namespace netsculpt;
+
+namespace {
+
+constexpr double kTolerance = 1e-6;
+
+Material rope(double stiffness) { return Material{stiffness, 0.01, 0.002, 0.006}; }
+
+CurveSpec polygon(int n, double radius, double z = 0) {
+    CurveSpec spec;
+    spec.closed = true;
+    for (int i = 0; i < n; ++i) {
+        const double a = 2 * std::numbers::pi * i / n;
+        spec.points.push_back({radius * std::cos(a), radius * std::sin(a), z});
+    }
+    return spec;
+}
+
+CurveSpec line(Vec3 a, Vec3 b) {
+    CurveSpec spec;
+    spec.points = {a, b};
+    return spec;
+}
+
+/// A tube of `rows` x `columns` below a circular rail, knots 0.1 m apart on the rail.
+Sculpture tube(int rows, int columns, double stiffness) {
+    Sculpture s;
+    const RailId top = addRail(s, "top", polygon(columns, columns * 0.1 / (2 * std::numbers::pi)));
+    const PieceId piece = attachToRail(s, {top, columns, 0, rows, 0.1, 0, false});
+    setMaterial(s, piece, rope(stiffness));
+    refreshAndValidate(s);
+    return s;
+}
+
+/// A sheet on an open rail whose last row is held by a parallel rail 0.58 of the sheet's
+/// height away (0.3 H aside, 0.5 H below): it hangs slack between them.
+Sculpture slackSheet(int rows, int columns, double stiffness) {
+    Sculpture s;
+    const double width = (columns - 1) * 0.1;
+    const double height = (rows - 1) * std::sqrt(0.01 - 0.0025);
+    const RailId top = addRail(s, "top", line({0, 0, 0}, {width, 0, 0}));
+    const RailId bottom = addRail(s, "bottom", line({0, 0.3 * height, -0.5 * height},
+                                                    {width, 0.3 * height, -0.5 * height}));
+    const PieceId piece = attachToRail(s, {top, columns, 0, rows, 0.1, 0, false});
+    connectToRail(s, piece, bottom, 0.0, false);
+    setMaterial(s, piece, rope(stiffness));
+    refreshAndValidate(s);
+    return s;
+}
+
+/// Three tubes stacked through gears 1/2 and 1/3 (18, 9, 3 columns). (A gear-up join can have
+/// two stable equilibria, its new knots hanging outside or swung inside the tube, and the two
+/// paths need not pick the same one; that case is left out of this comparison.)
+Sculpture gearStack(double stiffness) {
+    Sculpture s;
+    const RailId top = addRail(s, "top", polygon(18, 18 * 0.1 / (2 * std::numbers::pi)));
+    const PieceId a = attachToRail(s, {top, 18, 0, 4, 0.1, 0, false});
+    const PieceId b = attachToPiece(s, {a, Gear{1, 2}, 4, 0.12});
+    const PieceId c = attachToPiece(s, {b, Gear{1, 3}, 3, 0.2});
+    for (PieceId id : {a, b, c})
+        setMaterial(s, id, rope(stiffness));
+    refreshAndValidate(s);
+    return s;
+}
+
+double maxDistance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+    double worst = 0;
+    for (std::size_t j = 0; j < a.size(); ++j)
+        worst = std::max(worst, distance(a[j], b[j]));
+    return worst;
+}
+
+bool sameBits(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)) == 0;
+}
+
+bool allFinite(const MassSpringSystem& s) {
+    for (const Vec3& p : s.position)
+        if (!p.isFinite())
+            return false;
+    return true;
+}
+
+/// The exact Hessian of the energy (Eq. 3's stiffness matrix, slack bars' negative geometric
+/// stiffness included) over the free coordinates, dense.
+Eigen::MatrixXd exactHessian(const MassSpringSystem& s) {
+    std::vector<int> index(s.knotCount(), -1);
+    int n = 0;
+    for (std::size_t j = 0; j < s.knotCount(); ++j)
+        if (!s.fixed[j])
+            index[j] = n++;
+    Eigen::MatrixXd h = Eigen::MatrixXd::Zero(3 * n, 3 * n);
+    for (std::size_t b = 0; b < s.barCount(); ++b) {
+        const Vec3 d = s.position[s.barB[b]] - s.position[s.barA[b]];
+        const double l = d.norm(), extension = l - s.restLength[b];
+        const double k = extension > 0 ? s.kTension[b] : s.kCompression[b];
+        const Eigen::Vector3d u(d.x / l, d.y / l, d.z / l);
+        const double q = k * extension / l;
+        const Eigen::Matrix3d block = (k - q) * u * u.transpose() + q * Eigen::Matrix3d::Identity();
+        const int i = index[s.barA[b]], j = index[s.barB[b]];
+        if (i >= 0)
+            h.block<3, 3>(3 * i, 3 * i) += block;
+        if (j >= 0)
+            h.block<3, 3>(3 * j, 3 * j) += block;
+        if (i >= 0 && j >= 0) {
+            h.block<3, 3>(3 * i, 3 * j) -= block;
+            h.block<3, 3>(3 * j, 3 * i) -= block;
+        }
+    }
+    return h;
+}
+
+/// How far two states that both meet the tolerance can be from each other, to first order:
+/// each is within |H^-1| |F| of the exact equilibrium, |F|_2 <= tolerance g sqrt(sum m_j^2)
+/// (every free knot at the limit), |H^-1|_2 = 1 / lambda_min of the exact Hessian at the
+/// equilibrium (a stable one: lambda_min > 0). A factor 2 covers the second-order terms.
+double equilibriumBound(const MassSpringSystem& s, double tolerance) {
+    const Eigen::VectorXd eigenvalues =
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(exactHessian(s), Eigen::EigenvaluesOnly)
+            .eigenvalues();
+    const double lambdaMin = eigenvalues.minCoeff();
+    REQUIRE(lambdaMin > 0);
+    double massSquares = 0;
+    for (std::size_t j = 0; j < s.knotCount(); ++j)
+        if (!s.fixed[j])
+            massSquares += s.mass[j] * s.mass[j];
+    const double force = tolerance * s.gravity.norm() * std::sqrt(massSquares);
+    return 2 * (2 * force / lambdaMin);
+}
+
+void sameEquilibriumAsRk4(const Sculpture& sculpture) {
+    const MassSpringSystem start = compileSculpture(sculpture).system;
+    MassSpringSystem fast = start, slow = start;
+    RelaxOptions options;
+    options.tolerance = kTolerance;
+    const RelaxResult a = relaxFast(fast, options);
+    const RelaxResult b = relaxRk4(slow, options);
+    REQUIRE(a.converged);
+    REQUIRE(b.converged);
+    const double bound = equilibriumBound(fast, kTolerance);
+    const double gap = maxDistance(fast.position, slow.position);
+    INFO("fast " << a.steps << " Newton steps, rk4 " << b.steps << " steps; max knot distance "
+                 << gap << " m, bound " << bound << " m");
+    CHECK(gap <= bound);
+    CHECK(bound < 1e-3); // the bound says something at the scale of a 0.1 m bar
+}
+
+} // namespace
+
+TEST_CASE("fast: the same equilibrium as RK4 on a tube", "[fast]") {
+    sameEquilibriumAsRk4(tube(8, 12, 50));
+}
+
+TEST_CASE("fast: the same equilibrium as RK4 on a slack sheet between two rails", "[fast]") {
+    const Sculpture s = slackSheet(10, 8, 50);
+    MassSpringSystem start = compileSculpture(s).system;
+    // The start really is slack: the rails are nearer than the sheet's height.
+    const double height = 9 * std::sqrt(0.01 - 0.0025);
+    CHECK(std::hypot(0.3 * height, 0.5 * height) < height);
+    sameEquilibriumAsRk4(s);
+}
+
+TEST_CASE("fast: the same equilibrium as RK4 on a gear stack", "[fast]") {
+    sameEquilibriumAsRk4(gearStack(50));
+}
+
+TEST_CASE("fast: a realistic rope's 20x40 tube converges to 1e-6 from Eq. 2", "[fast]") {
+    MassSpringSystem system = compileSculpture(tube(20, 40, 2e5)).system;
+    FastRelaxer relaxer;
+    const RelaxResult result = relaxer.relax(system, RelaxOptions{});
+    REQUIRE(result.converged);
+    CHECK(result.stopReason == "converged");
+    CHECK(result.backend == "fast");
+    CHECK(result.residual < 1e-6);
+    CHECK(result.residual == residual(system)); // the project's own measure, same positions
+    CHECK(result.steps < 40);
+    CHECK(relaxer.statistics().softIterations > 0); // a cold start goes through the soft stage
+    // Newton's equilibrium is physical: the rail carries the whole weight.
+    Vec3 carried;
+    for (const Vec3& r : reactions(system))
+        carried += r;
+    CHECK(std::abs(carried.z - totalWeight(system)) < 1e-6 * totalWeight(system));
+    CHECK(std::abs(carried.x) < 1e-6 * totalWeight(system));
+}
+
+TEST_CASE("fast: a realistic slack sheet converges", "[fast]") {
+    MassSpringSystem system = compileSculpture(slackSheet(12, 16, 2e5)).system;
+    const RelaxResult result = relaxFast(system);
+    REQUIRE(result.converged);
+    CHECK(residual(system) < 1e-6);
+    std::size_t compressed = 0;
+    for (double t : barTensions(system))
+        compressed += t < 0 ? 1 : 0;
+    CHECK(compressed > 0); // it is slack at equilibrium too
+}
+
+TEST_CASE("fast: warm start after an edit takes fewer iterations than from scratch", "[fast]") {
+    Sculpture s = tube(20, 40, 2e5);
+    CompiledSculpture before = compileSculpture(s);
+    FastRelaxer relaxer;
+    REQUIRE(relaxer.relax(before.system, RelaxOptions{}).converged);
+
+    // Edit: heavier knots (same topology: the analysis is reused too).
+    Material heavier = rope(2e5);
+    heavier.knotMass = 0.003;
+    const PieceId piece = s.pieces.begin()->first;
+    auto [ignored, after] = applyAtomically(s, [&](Sculpture& m) {
+        setMaterial(m, piece, heavier);
+        return 0;
+    });
+    const MassSpringSystem cold = after.system;
+    REQUIRE(carryPositions(before, after) > 0);
+    const RelaxResult warm = relaxer.relax(after.system, RelaxOptions{});
+    REQUIRE(warm.converged);
+    CHECK(relaxer.statistics().reusedAnalysis);
+    CHECK(relaxer.statistics().softIterations == 0);
+
+    MassSpringSystem scratch = cold;
+    const RelaxResult fromScratch = relaxFast(scratch);
+    REQUIRE(fromScratch.converged);
+    INFO("warm " << warm.steps << " iterations, from scratch " << fromScratch.steps);
+    CHECK(warm.steps < fromScratch.steps);
+    CHECK(warm.steps <= 6);
+    // Both reach the same shape (a tension-dominated net has one equilibrium).
+    CHECK(maxDistance(after.system.position, scratch.position) < 1e-6);
+
+    // Edit that changes the topology: two more rows, carried positions for the old knots.
+    auto [ignored2, longer] = applyAtomically(s, [&](Sculpture& m) {
+        setRows(m, piece, 22);
+        return 0;
+    });
+    const MassSpringSystem longerCold = longer.system;
+    carryPositions(after, longer);
+    const RelaxResult grown = relaxer.relax(longer.system, RelaxOptions{});
+    REQUIRE(grown.converged);
+    CHECK_FALSE(relaxer.statistics().reusedAnalysis);
+    MassSpringSystem longerScratch = longerCold;
+    const RelaxResult longerFromScratch = relaxFast(longerScratch);
+    REQUIRE(longerFromScratch.converged);
+    // Rows added below a relaxed net do not carry their weight yet: that start is treated as a
+    // cold one (soft stage) and costs about what a start from scratch costs.
+    INFO("grown: warm " << grown.steps << ", from scratch " << longerFromScratch.steps);
+    CHECK(grown.steps <= 2 * longerFromScratch.steps);
+    CHECK(maxDistance(longer.system.position, longerScratch.position) < 1e-6);
+}
+
+TEST_CASE("fast: deterministic on reruns and with 1 or 2 threads", "[fast]") {
+    const MassSpringSystem start = compileSculpture(slackSheet(12, 16, 2e5)).system;
+    auto run = [&](int threads) {
+        MassSpringSystem system = start;
+        RelaxOptions options;
+        options.threads = threads;
+        const RelaxResult result = relaxFast(system, options);
+        REQUIRE(result.converged);
+        return std::make_pair(system.position, result.steps);
+    };
+    const auto one = run(1), again = run(1), two = run(2);
+    CHECK(sameBits(one.first, again.first));
+    CHECK(sameBits(one.first, two.first));
+    CHECK(one.second == two.second);
+}
+
+TEST_CASE("fast: never reports converged when it is not", "[fast]") {
+    MassSpringSystem system = compileSculpture(tube(20, 40, 2e5)).system;
+    RelaxOptions options;
+    options.maxSteps = 1;
+    const RelaxResult result = relaxFast(system, options);
+    CHECK_FALSE(result.converged);
+    CHECK(result.stopReason == "step limit");
+    CHECK(result.steps == 1);
+    CHECK(result.residual >= kTolerance);
+    CHECK(result.residual == residual(system));
+    CHECK(allFinite(system));
+
+    MassSpringSystem none = compileSculpture(tube(20, 40, 2e5)).system;
+    options.maxSteps = 0;
+    const RelaxResult zero = relaxFast(none, options);
+    CHECK_FALSE(zero.converged);
+    CHECK(zero.steps == 0);
+    CHECK(zero.residual == residual(none));
+}
+
+TEST_CASE("fast: an already relaxed system takes no step", "[fast]") {
+    MassSpringSystem system = compileSculpture(tube(8, 12, 2e5)).system;
+    REQUIRE(relaxFast(system).converged);
+    const std::vector<Vec3> relaxed = system.position;
+    const RelaxResult again = relaxFast(system);
+    CHECK(again.converged);
+    CHECK(again.steps == 0);
+    CHECK(sameBits(system.position, relaxed));
+}
+
+TEST_CASE("fast: cancel, time limit and progress", "[fast]") {
+    const MassSpringSystem start = compileSculpture(tube(20, 40, 2e5)).system;
+    SECTION("cancelled before the first step") {
+        MassSpringSystem system = start;
+        std::atomic<bool> cancel{true};
+        RelaxOptions options;
+        options.cancel = &cancel;
+        const RelaxResult result = relaxFast(system, options);
+        CHECK(result.stopReason == "cancelled");
+        CHECK_FALSE(result.converged);
+        CHECK(allFinite(system));
+    }
+    SECTION("progress is reported, the last time with the final residual") {
+        MassSpringSystem system = start;
+        RelaxOptions options;
+        options.progressInterval = 0;
+        int calls = 0;
+        RelaxProgress last;
+        options.progress = [&](const RelaxProgress& p) {
+            ++calls;
+            last = p;
+        };
+        const RelaxResult result = relaxFast(system, options);
+        CHECK(calls >= 2);
+        CHECK(last.residual == result.residual);
+        CHECK(last.steps == result.steps);
+        CHECK(last.stiffnessScale == 1.0);
+    }
+}
+
+TEST_CASE("fast: wind is a load at the current positions", "[fast]") {
+    MassSpringSystem system = compileSculpture(tube(8, 12, 2e5)).system;
+    RelaxOptions options;
+    options.wind = Wind{{1, 0, 0}, 0.05}; // N per metre of rope
+    const RelaxResult result = relaxFast(system, options);
+    REQUIRE(result.converged);
+    CHECK(residual(system, options.wind) < kTolerance);
+    CHECK(residual(system) > kTolerance); // without the wind it is not an equilibrium
+}
+
+TEST_CASE("fast: bad input is a user error", "[fast]") {
+    MassSpringSystem system = compileSculpture(tube(4, 12, 2e5)).system;
+    RelaxOptions options;
+    options.tolerance = 0;
+    CHECK_THROWS_AS(relaxFast(system, options), UserError);
+    MassSpringSystem loose = system;
+    std::fill(loose.fixed.begin(), loose.fixed.end(), std::uint8_t{0});
+    CHECK_THROWS_WITH(relaxFast(loose), Catch::Contains("no knot is fixed"));
+    MassSpringSystem broken = system;
+    broken.position.back().x = std::nan("");
+    CHECK_THROWS_WITH(relaxFast(broken), Catch::Contains("non-finite position"));
+}

@@ -1,0 +1,121 @@
+// The block sparse Cholesky factorization of the Newton relaxer against Eigen's dense one.
+#include "physics/ThreadPool.h"
+#include "physics/fast/SupernodalCholesky.h"
+
+#include <Eigen/Dense>
+#include <catch2/catch.hpp>
+
+#include <array>
+#include <cstring>
+#include <random>
+#include <vector>
+
+using namespace netsculpt;
+
+namespace {
+
+/// A random symmetric positive definite matrix of 3x3 blocks on a grid graph (rows x columns
+/// nodes, a node joined to its right and lower neighbours, plus a few long links), as the
+/// block values SupernodalCholesky takes and as a dense matrix.
+struct Problem {
+    std::size_t nodes = 0;
+    std::vector<std::array<std::uint32_t, 2>> pairs;
+    std::vector<double> values;
+    Eigen::MatrixXd dense;
+};
+
+Problem gridProblem(int rows, int columns, unsigned seed) {
+    Problem p;
+    p.nodes = static_cast<std::size_t>(rows * columns);
+    auto node = [columns](int r, int c) { return static_cast<std::uint32_t>(r * columns + c); };
+    for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < columns; ++c) {
+            if (c + 1 < columns)
+                p.pairs.push_back({node(r, c), node(r, c + 1)});
+            if (r + 1 < rows)
+                p.pairs.push_back({node(r + 1, c), node(r, c)});
+        }
+    p.pairs.push_back({node(0, 0), node(rows - 1, columns - 1)});
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> uniform(-1, 1);
+    const Eigen::Index n = static_cast<Eigen::Index>(3 * p.nodes);
+    p.dense = Eigen::MatrixXd::Zero(n, n);
+    std::vector<Eigen::Matrix3d> pairBlocks;
+    for (const auto& [i, j] : p.pairs) {
+        Eigen::Matrix3d b;
+        for (int k = 0; k < 9; ++k)
+            b(k / 3, k % 3) = uniform(random);
+        pairBlocks.push_back(b);
+        p.dense.block<3, 3>(3 * i, 3 * j) = b;
+        p.dense.block<3, 3>(3 * j, 3 * i) = b.transpose();
+    }
+    // Diagonal dominance makes it positive definite.
+    for (Eigen::Index k = 0; k < n; ++k)
+        p.dense(k, k) = p.dense.row(k).cwiseAbs().sum() + 1 + uniform(random) * 0.5;
+    for (std::size_t i = 0; i < p.nodes; ++i) {
+        const Eigen::Index at = static_cast<Eigen::Index>(3 * i);
+        Eigen::Matrix3d d = p.dense.block<3, 3>(at, at);
+        d(0, 1) = d(1, 0) = 0.3;
+        d(1, 2) = d(2, 1) = -0.2;
+        p.dense.block<3, 3>(at, at) = d;
+        for (int k = 0; k < 9; ++k)
+            p.values.push_back(d(k / 3, k % 3));
+    }
+    for (const Eigen::Matrix3d& b : pairBlocks)
+        for (int k = 0; k < 9; ++k)
+            p.values.push_back(b(k / 3, k % 3));
+    return p;
+}
+
+} // namespace
+
+TEST_CASE("supernodal Cholesky solves like a dense one", "[fast]") {
+    for (auto [rows, columns] : {std::pair{3, 4}, std::pair{30, 40}, std::pair{60, 60}}) {
+        const Problem p = gridProblem(rows, columns, 7);
+        SupernodalCholesky cholesky;
+        cholesky.analyse(p.nodes, p.pairs);
+        REQUIRE(cholesky.factorize(p.values, 0.0));
+        Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(p.dense.rows(), -1, 2);
+        std::vector<double> x(b.data(), b.data() + b.size());
+        cholesky.solve(x);
+        const Eigen::Map<Eigen::VectorXd> solution(x.data(), b.size());
+        const double error = (p.dense * solution - b).cwiseAbs().maxCoeff();
+        INFO(rows << " x " << columns << " nodes: residual " << error);
+        CHECK(error < 1e-10);
+        CHECK(cholesky.factorEntries() > 0);
+
+        // A shift is added to every diagonal entry.
+        REQUIRE(cholesky.factorize(p.values, 2.0));
+        std::vector<double> y(b.data(), b.data() + b.size());
+        cholesky.solve(y);
+        const Eigen::Map<Eigen::VectorXd> shifted(y.data(), b.size());
+        const Eigen::MatrixXd a = p.dense + 2.0 * Eigen::MatrixXd::Identity(b.size(), b.size());
+        CHECK((a * shifted - b).cwiseAbs().maxCoeff() < 1e-10);
+    }
+}
+
+TEST_CASE("supernodal Cholesky: the same bits with 1 and 2 threads", "[fast]") {
+    const Problem p = gridProblem(60, 60, 11);
+    SupernodalCholesky one, two;
+    one.analyse(p.nodes, p.pairs);
+    two.analyse(p.nodes, p.pairs);
+    ThreadPool pool(2);
+    REQUIRE(one.factorize(p.values, 0.0));
+    REQUIRE(two.factorize(p.values, 0.0, &pool));
+    std::vector<double> x(3 * p.nodes, 1.0), y = x;
+    one.solve(x);
+    two.solve(y);
+    CHECK(std::memcmp(x.data(), y.data(), x.size() * sizeof(double)) == 0);
+}
+
+TEST_CASE("supernodal Cholesky refuses a matrix that is not positive definite", "[fast]") {
+    Problem p = gridProblem(10, 10, 3);
+    SupernodalCholesky cholesky;
+    cholesky.analyse(p.nodes, p.pairs);
+    p.values[9 * 50 + 4] = -1; // a negative diagonal entry
+    CHECK_FALSE(cholesky.factorize(p.values, 0.0));
+    p.values[9 * 50 + 4] = std::nan("");
+    CHECK_FALSE(cholesky.factorize(p.values, 0.0));
+    p.values[9 * 50 + 4] = -1;
+    CHECK(cholesky.factorize(p.values, 1e3)); // a large enough shift makes it definite
+}

@@ -1,0 +1,93 @@
+// The limits that stop runaway scripts (scripting/Limits.h): an instruction budget and a memory
+// limit; the host survives and reports, and a script cannot catch the limit's error.
+
+#include "ScriptTestSupport.h"
+
+#include "scripting/Limits.h"
+
+#include <catch2/catch.hpp>
+
+using namespace netsculpt;
+using namespace netsculpt::test;
+using Catch::Matchers::Contains;
+using Catch::Matchers::Equals;
+
+namespace {
+
+lua::ScriptOptions limited(const ScriptFolders& f, std::uint64_t instructions, std::size_t mib) {
+    lua::ScriptOptions o = f.options();
+    o.maxInstructions = instructions;
+    o.maxMemory = mib << 20;
+    return o;
+}
+
+} // namespace
+
+TEST_CASE("Budget and limit texts", "[limits]") {
+    CHECK(lua::instructionBudgetText(1'000'000'000) == "10^9");
+    CHECK(lua::instructionBudgetText(1000) == "10^3");
+    CHECK(lua::instructionBudgetText(100) == "100");
+    CHECK(lua::instructionBudgetText(2'500'000) == "2500000");
+    CHECK(lua::memoryLimitText(std::size_t(512) << 20) == "512 MiB");
+    CHECK(lua::memoryExceededMessage(std::size_t(512) << 20) == "script exceeded 512 MiB of memory");
+    CHECK(lua::instructionsExceededMessage(1'000'000'000) == "script exceeded its budget of 10^9 instructions");
+}
+
+TEST_CASE("An endless loop is stopped by the instruction budget", "[limits]") {
+    const ScriptFolders f("loop");
+    const auto o = limited(f, 10'000'000, 64);
+    SECTION("plain") {
+        const auto r = f.run("local x = 0\nwhile true do x = x + 1 end", o, "loop.lua");
+        CHECK_FALSE(r.ok);
+        CHECK(r.stop == lua::Stop::Instructions);
+        CHECK_THAT(r.error, Equals("loop.lua:2: script exceeded its budget of 10^7 instructions"));
+        CHECK(r.instructions > 10'000'000);
+        CHECK(r.instructions <= 10'001'000);
+    }
+    SECTION("inside pcall, xpcall and coroutines: the error cannot be caught") {
+        for (const char* code : {"while true do pcall(function() while true do end end) end",
+                                 "while true do xpcall(function() while true do end end, print) end",
+                                 "while true do coroutine.resume(coroutine.create(function() while true do end end)) end",
+                                 "local ok = pcall(function() while true do end end); print('survived')"}) {
+            INFO(code);
+            const auto r = f.run(code, o);
+            CHECK(r.stop == lua::Stop::Instructions);
+            CHECK_THAT(r.error, Contains("script exceeded its budget of 10^7 instructions"));
+        }
+    }
+    SECTION("the host goes on") {
+        CHECK_FALSE(f.run("while true do end", o).ok);
+        const auto r = f.run("local s = 0 for i = 1, 1000 do s = s + i end assert(s == 500500)", o);
+        CHECK(r.ok);
+        CHECK(r.stop == lua::Stop::None);
+    }
+}
+
+TEST_CASE("A huge table is stopped by the memory limit", "[limits]") {
+    const ScriptFolders f("memory");
+    const auto o = limited(f, 0, 32);
+    for (const char* code : {"local t = {} for i = 1, 1e9 do t[i] = i end",
+                             "local t = {} for i = 1, 1e9 do t[i] = {i} end",
+                             "local s = string.rep('x', 2^30)",
+                             "while true do pcall(function() local t = {} for i = 1, 1e9 do t[i] = i end end) end",
+                             "local t = {} while true do t[#t + 1] = tostring(#t) .. 'abcdefgh' end"}) {
+        INFO(code);
+        const auto r = f.run(code, o);
+        CHECK_FALSE(r.ok);
+        CHECK(r.stop == lua::Stop::Memory);
+        CHECK(r.error == "script exceeded 32 MiB of memory");
+        CHECK(r.peakMemory <= (std::size_t(32) << 20));
+    }
+    SECTION("the host goes on, and the limit does not get in the way of normal work") {
+        const auto r = f.run("local ns = require 'netsculpt'\n"
+                             "local doc = ns.new()\n"
+                             "local pts = {} for i = 0, 63 do local a = 2 * math.pi * i / 64\n"
+                             "  pts[#pts + 1] = {2 * math.cos(a), 2 * math.sin(a), 5} end\n"
+                             "local r = doc:add_rail{points = pts, closed = true}\n"
+                             "local p = doc:attach_to_rail{rail = r, columns = 200, rows = 200, bar = 0.1}\n"
+                             "assert(#doc:knots(p) == 200)",
+                             o);
+        CHECK(r.error == "");
+        CHECK(r.ok);
+    }
+}

@@ -1,0 +1,171 @@
+-- The binding's public API, end to end (DESIGN.md "Lua API"). Runs through `netsculpt run` and
+-- through a stock lua5.4 with netsculpt.so on LUA_CPATH; writes into the output folder.
+local T = require "testlib"
+local ns = require "netsculpt"
+
+T.case("module", function()
+  T.eq(type(ns.version), "string")
+  T.eq(ns.backends()[1], "auto")
+  local formats = table.concat(ns.export_formats(), " ")
+  T.check(formats:find("csv") and formats:find("png"), formats)
+end)
+
+T.case("rails: polyline, B-spline, queries", function()
+  local doc = ns.new()
+  local ring = doc:add_rail{name = "ring", points = T.circle(2, 5, 64), closed = true}
+  local info = ring:info()
+  T.eq(tostring(ring), "rail 1")
+  T.eq(ring.id, 1)
+  T.eq(info.name, "ring")
+  T.eq(info.closed, true)
+  T.eq(info.kind, "polyline")
+  T.near(info.length, 64 * 2 * 2 * math.sin(math.pi / 64), 1e-9)
+  local p0 = ring:point(0)
+  T.near(p0[1], 2, 1e-12); T.near(p0[3], 5, 1e-12)
+  local spline = doc:add_rail{name = "arc", degree = 3, closed = false, sampling = "parameter",
+                              control = {{0, 0, 4}, {1, 0, 4.5}, {2, 0, 4.5}, {3, 0, 4}}}
+  T.eq(spline:info().kind, "bspline")
+  T.eq(spline:info().degree, 3)
+  T.eq(spline:info().sampling, "parameter")
+  T.eq(#doc:rails(), 2)
+  T.check(doc:rails()[2] == spline)
+  doc:rename{rail = spline, name = "bow"}
+  T.eq(doc:rail_info(spline).name, "bow")
+  doc:remove_rail{rail = spline}
+  T.eq(#doc:rails(), 1)
+  T.raises(function() return spline:info() end, "info: rail 2 was removed")
+end)
+
+T.case("import_rails from CSV", function()
+  local doc = ns.new()
+  local rails = doc:import_rails(T.data("two_rails.csv"))
+  T.eq(#rails, 2)
+  T.eq(rails[1]:info().name, "upper")
+  T.eq(rails[1]:info().closed, true)
+  T.near(rails[2]:info().length, 12, 1e-12)
+  T.raises(function() doc:import_rails(T.data("none.csv")) end, "import_rails:", "none.csv")
+end)
+
+T.case("pieces: attach, gears, split, seams, sizes", function()
+  local doc = ns.new()
+  local ring = doc:add_rail{name = "ring", points = T.circle(2, 5, 64), closed = true}
+  local p = doc:attach_to_rail{rail = ring, columns = 48, rows = 10, bar = 0.25}
+  local info = p:info()
+  T.eq(tostring(p), "piece 1")
+  T.eq(info.rows, 10); T.eq(info.columns, 48); T.eq(info.closed, true); T.eq(info.knots, 480)
+  T.check(info.top.rail == ring)
+  T.eq(#info.bar_lengths, 48)
+  T.eq(info.bar_lengths[1], 0.25)
+  for gear, columns in pairs{[2] = 96, ["1/2"] = 24, [0.5] = 24, [1 / 3] = 16, ["x3"] = 144, [1] = 48} do
+    local q = doc:attach_to_piece{piece = p, gear = gear, rows = 4, bar = 0.5}
+    T.eq(q:info().columns, columns, "gear " .. tostring(gear))
+    doc:remove_piece{piece = q}
+  end
+  local q = doc:attach_to_piece{piece = p, gear = 2, rows = 6, bar = 0.5}
+  T.eq(q:info().top.gear, "2")
+  T.check(q:info().top.pieces[1] == p)
+  doc:set_gear{piece = q, gear = "1/3"}
+  T.eq(q:info().columns, 16)
+  doc:set_columns{piece = q, columns = 25}
+  T.eq(q:info().columns, 24) -- the nearest allowed gear
+  doc:set_rows{piece = p, rows = 12}
+  T.eq(p:info().rows, 12)
+  T.eq(q:info().columns, 24) -- rebuilt below, keeping its join
+  local a, b = doc:split{piece = p, column = 12}
+  T.check(a == p, "the first part keeps the piece's id")
+  T.eq(a:info().columns + b:info().columns, 48 + 2) -- two seams share a column each
+  T.check(a:info().right == b and b:info().right == a)
+  doc:set_bar_length{piece = a, column = 12, length = 0.3}
+  T.eq(a:info().bar_lengths[13], 0.3)
+  T.eq(b:info().bar_lengths[1], 0.3) -- equal at the seam
+  T.eq(#doc:pieces(), 3)
+  local knots = doc:knots(q)
+  T.eq(#knots, 6); T.eq(#knots[1], 24); T.eq(#knots[1][1], 3)
+end)
+
+T.case("handles: identity, keys, liveness, other documents", function()
+  local doc = ns.new()
+  local ring = doc:add_rail{points = T.circle(1, 3, 16), closed = true}
+  local p = doc:attach_to_rail{rail = ring, columns = 12, rows = 3, bar = 0.4}
+  T.check(rawequal(doc:pieces()[1], p), "the same id gives the same handle")
+  local colour = {[p] = "red"}
+  T.eq(colour[doc:pieces()[1]], "red")
+  T.eq(p.id, 1)
+  local other = ns.new()
+  local foreign = other:add_rail{points = T.circle(1, 3, 16), closed = true}
+  T.check(foreign == ring, "handles compare equal by id")
+  T.raises(function() doc:attach_to_rail{rail = foreign, columns = 12, rows = 3} end,
+           "attach_to_rail: argument 'rail' is rail 1 of another sculpture")
+  doc:remove_piece{piece = p}
+  T.raises(function() doc:set_rows{piece = p, rows = 4} end, "set_rows: argument 'piece': piece 1 was removed")
+  doc:undo()
+  T.eq(p:info().rows, 3) -- alive again
+end)
+
+T.case("edits: material, colour, rename, connect, gravity", function()
+  local doc = ns.new()
+  local top = doc:add_rail{points = T.circle(2, 5, 48), closed = true}
+  local bottom = doc:add_rail{points = T.circle(1.5, 3, 48), closed = true}
+  local p = doc:attach_to_rail{rail = top, columns = 36, rows = 8, bar = 0.3}
+  doc:set_material{piece = p, stiffness = 500, knot_mass = 0.004}
+  local m = p:info().material
+  T.eq(m.stiffness, 500); T.eq(m.knot_mass, 0.004); T.eq(m.compression_ratio, 0.01) -- kept
+  doc:set_colour{piece = p, colour = {0.1, 0.2, 0.3}}
+  T.eq(p:info().colour[3], 0.3)
+  doc:rename{piece = p, name = "tube"}
+  T.eq(p:info().name, "tube")
+  doc:connect_to_rail{piece = p, rail = bottom, at = 0.25}
+  T.check(p:info().bottom.rail == bottom)
+  T.near(p:info().bottom.at, 0.25, 1e-15)
+  doc:disconnect{piece = p}
+  T.eq(p:info().bottom, nil)
+  doc:set_gravity{0, 0, -9.8}
+  T.raises(function() doc:set_gravity{0, 0, 0} end, "set_gravity:", "gravity")
+end)
+
+T.case("undo, redo, hash", function()
+  local doc = ns.new()
+  local h0 = doc:hash()
+  local ring = doc:add_rail{points = T.circle(2, 5, 48), closed = true}
+  local p = doc:attach_to_rail{rail = ring, columns = 24, rows = 5, bar = 0.4}
+  local h2 = doc:hash()
+  doc:set_rows{piece = p, rows = 7}
+  T.check(doc:hash() ~= h2)
+  doc:undo()
+  T.eq(doc:hash(), h2)
+  doc:redo()
+  T.eq(p:info().rows, 7)
+  doc:undo(); doc:undo(); doc:undo()
+  T.eq(doc:hash(), h0)
+  T.eq(doc:can_undo(), false)
+  T.raises(function() doc:undo() end, "undo: nothing to undo")
+end)
+
+T.case("relax, export, report, save and open", function()
+  local doc = ns.new()
+  T.eq(doc:last_relax(), nil)
+  local ring = doc:add_rail{points = T.circle(2, 5, 48), closed = true}
+  local p = doc:attach_to_rail{rail = ring, columns = 24, rows = 4, bar = 0.4}
+  doc:set_material{piece = p, stiffness = 100}
+  local r = doc:relax{tolerance = 1e-3, max_seconds = 10, backend = "rk4"}
+  T.eq(r.converged, true); T.eq(r.stop_reason, "converged"); T.eq(r.backend, "rk4")
+  T.check(r.steps > 0 and r.evaluations >= r.steps and r.residual < 1e-3)
+  T.eq(doc:last_relax().steps, r.steps)
+  local knots = doc:knots(p)
+  T.check(knots[4][1][3] < knots[1][1][3], "the net hangs below the rail")
+  local csv = doc:export("api/knots.csv")
+  local lines = 0
+  for _ in io.lines(csv) do lines = lines + 1 end
+  T.eq(lines, 1 + 96)
+  local report = doc:report()
+  T.eq(#report.pieces, 1); T.eq(report.pieces[1].knots, 96)
+  T.near(report.total_weight, report.total_mass * 9.81, 1e-9)
+  local path = doc:save("api/design.netj")
+  local copy = ns.open(path)
+  T.eq(copy:hash(), doc:hash())
+  doc:save_snapshot("api/design.nets")
+  local snap = ns.open(ns.output_dir() .. "/api/design.nets")
+  T.eq(snap:knots(snap:pieces()[1])[4][1][3], knots[4][1][3]) -- the relaxed shape, bit for bit
+end)
+
+T.done("test_api")

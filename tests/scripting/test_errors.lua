@@ -1,0 +1,80 @@
+-- Every bad call raises a Lua error that carries the script's file:line, names the call and the
+-- argument, shows the bad value and what is allowed; the sculpture is then exactly as before.
+local T = require "testlib"
+local ns = require "netsculpt"
+
+local doc = ns.new()
+local ring = doc:add_rail{name = "ring", points = T.circle(2, 5, 48), closed = true}
+local p = doc:attach_to_rail{rail = ring, columns = 36, rows = 6, bar = 0.3}
+local before = doc:hash()
+
+-- Runs f (which must fail on the line `line`) and checks the message and that nothing changed.
+local function fails(line, f, ...)
+  local message = T.raises(f, "test_errors.lua:" .. line .. ": ", ...)
+  T.eq(doc:hash(), before, "the sculpture changed after: " .. message)
+  T.eq(#doc:pieces(), 1)
+  T.eq(#doc:rails(), 1)
+end
+local function here() return debug.getinfo(2, "l").currentline end
+
+T.case("whole numbers", function()
+  fails(here(), function() doc:attach_to_rail{rail = ring, columns = 36, rows = -3} end,
+        "attach_to_rail: argument 'rows' must be a whole number from 1 to 100000, got -3")
+  fails(here(), function() doc:set_rows{piece = p, rows = 2.5} end,
+        "set_rows: argument 'rows' must be a whole number", "got 2.5")
+  fails(here(), function() doc:set_rows{piece = p, rows = "3"} end, "got \"3\"")
+  fails(here(), function() doc:split{piece = p, column = 0} end,
+        "split: argument 'column' must be a whole number from 1 to 1000000, got 0")
+end)
+
+T.case("numbers and lengths", function()
+  fails(here(), function() doc:attach_to_piece{piece = p, rows = 3, bar = -0.2} end,
+        "attach_to_piece: argument 'bar' must be a finite number > 0, got -0.2")
+  fails(here(), function() doc:connect_to_rail{piece = p, rail = ring, at = 0 / 0} end,
+        "connect_to_rail: argument 'at' must be a finite number, got")
+  fails(here(), function() doc:set_material{piece = p, compression_ratio = 2} end,
+        "set_material: argument 'compression_ratio' must be from 0 to 1, got 2")
+  fails(here(), function() doc:set_colour{piece = p, colour = {1, 2, 0}} end,
+        "set_colour: argument 'colour'", "from 0 to 1, got 2")
+end)
+
+T.case("missing, unknown and misspelt arguments", function()
+  fails(here(), function() doc:attach_to_rail{rail = ring, rows = 3} end,
+        "attach_to_rail: argument 'columns' (or 'spacing') is missing")
+  fails(here(), function() doc:attach_to_rail{rail = ring, colums = 36, rows = 3} end,
+        "attach_to_rail: unknown argument \"colums\"; allowed: rail, columns, spacing")
+  fails(here(), function() doc:set_rows{rows = 3} end,
+        "set_rows: argument 'piece' is missing; expected a piece handle")
+  fails(here(), function() doc:set_rows(p, 3) end, "set_rows: expected a table of arguments")
+  fails(here(), function() doc.set_rows{piece = p, rows = 3} end, "set_rows: call it as doc:set_rows")
+end)
+
+T.case("enums list the valid values", function()
+  fails(here(), function() doc:add_rail{points = T.circle(1, 1, 8), sampling = "arc"} end,
+        "add_rail: argument 'sampling' must be one of \"arclength\" or \"parameter\", got \"arc\"")
+  fails(here(), function() doc:attach_to_piece{piece = p, gear = 4, rows = 3} end,
+        "attach_to_piece: argument 'gear' must be a gear: 3, 2, 1, 0.5, 1/3", "got 4")
+  fails(here(), function() doc:relax{backend = "warp"} end,
+        "relax: argument 'backend' must be one of \"auto\"", "got \"warp\"")
+  fails(here(), function() doc:export("x.png", {view = "back"}) end,
+        "export: argument 'view' must be one of \"top\", \"side\", \"front\", \"perspective\" or \"all\"")
+  fails(here(), function() doc:export("x.docx") end, "export: argument 'path' must end in one of .csv")
+end)
+
+T.case("handles of the wrong kind or removed", function()
+  fails(here(), function() doc:attach_to_rail{rail = p, columns = 36, rows = 3} end,
+        "attach_to_rail: argument 'rail' must be a rail handle, got piece 1")
+  fails(here(), function() doc:set_rows{piece = 7, rows = 3} end,
+        "set_rows: argument 'piece' must be a piece handle, got 7")
+end)
+
+T.case("errors from the kernel name the call and keep the sculpture", function()
+  fails(here(), function() doc:split{piece = p, column = 40} end, "split: column must be from 1 to 35")
+  fails(here(), function() doc:attach_to_piece{piece = p, gear = 1, rows = 3, bar = 0.1} end,
+        "attach_to_piece: piece 2: bar length 0.1 m")
+  fails(here(), function() doc:remove_rail{rail = ring} end, "remove_rail: cannot remove rail 1 (ring)")
+  fails(here(), function() doc:set_gear{piece = p, gear = 2} end, "set_gear: piece 1 hangs from a rail")
+  fails(here(), function() doc:redo() end, "redo: nothing to redo")
+end)
+
+T.done("test_errors")

@@ -1,0 +1,162 @@
+// The netsculpt program (tools/cli): exit codes (0 success, 1 user error, 2 usage error), --help,
+// --version, and each subcommand on a small sculpture.
+
+#include "CliSupport.h"
+
+#include <catch2/catch.hpp>
+
+#include <fstream>
+
+using namespace netsculpt::test;
+using Catch::Matchers::Contains;
+using Catch::Matchers::StartsWith;
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* const kSmallSculpture = R"(local ns = require "netsculpt"
+local doc = ns.new()
+local pts = {}
+for i = 0, 47 do local a = 2 * math.pi * i / 48; pts[#pts + 1] = {2 * math.cos(a), 2 * math.sin(a), 5} end
+local ring = doc:add_rail{name = "ring", points = pts, closed = true}
+local p = doc:attach_to_rail{rail = ring, columns = 24, rows = 4, bar = 0.4}
+doc:set_material{piece = p, stiffness = 100}
+local q = doc:attach_to_piece{piece = p, gear = 2, rows = 3, bar = 0.3}
+doc:set_material{piece = q, stiffness = 100}
+doc:set_rows{piece = q, rows = 5}
+doc:undo()
+doc:redo()
+print("hash " .. doc:hash())
+)";
+
+fs::path writeScript(const fs::path& folder, const std::string& name, const std::string& text) {
+    const fs::path file = folder / name;
+    std::ofstream(file) << text;
+    return file;
+}
+
+/// The "hash 0123..." a script printed.
+std::string printedHash(const std::string& output) {
+    const auto at = output.find("hash ");
+    return at == std::string::npos ? std::string() : output.substr(at + 5, 16);
+}
+
+} // namespace
+
+TEST_CASE("--help, --version and usage errors", "[cli]") {
+    const Ran help = runCli("--help");
+    CHECK(help.exitCode == 0);
+    for (const char* sub : {"run", "replay", "to-lua", "relax", "export", "report"}) CHECK_THAT(help.output, Contains(sub));
+    for (const char* sub : {"run", "replay", "to-lua", "relax", "export", "report"}) {
+        INFO(sub);
+        const Ran r = runCli(std::string(sub) + " --help");
+        CHECK(r.exitCode == 0);
+        CHECK_THAT(r.output, Contains("Usage"));
+    }
+    CHECK_THAT(runCli("run --help").output, Contains("--max-memory") && Contains("--max-instructions") &&
+                                                Contains("--unsafe") && Contains("--backend"));
+    const Ran version = runCli("--version");
+    CHECK(version.exitCode == 0);
+    CHECK_THAT(version.output, StartsWith("netsculpt "));
+    for (const char* bad : {"", "frobnicate", "run", "run x.lua --bogus", "relax d.netj --backend warp",
+                            "run x.lua --max-memory -3", "report d.netj --json --csv"}) {
+        INFO(bad);
+        const Ran r = runCli(bad);
+        CHECK(r.exitCode == 2);
+        CHECK_THAT(r.output, StartsWith("netsculpt: error: "));
+    }
+}
+
+TEST_CASE("run: exit code 0 with outputs and a journal, 1 with a one-line message", "[cli]") {
+    const fs::path dir = freshFolder("run");
+    const fs::path script = writeScript(dir, "small.lua", kSmallSculpture);
+    const Ran ok = runCli("run " + quoted(script) + " --out " + quoted(dir / "out") + " --quiet");
+    CHECK(ok.exitCode == 0);
+    CHECK(printedHash(ok.output).size() == 16);
+    CHECK(fs::is_regular_file(dir / "out" / "small.netj"));
+
+    const fs::path bad = writeScript(dir, "bad.lua", "local ns = require 'netsculpt'\nns.new():set_rows{rows = 0}\n");
+    const Ran failed = runCli("run " + quoted(bad) + " --out " + quoted(dir / "out"));
+    CHECK(failed.exitCode == 1);
+    CHECK_THAT(failed.output, StartsWith("netsculpt: error: ") && Contains("bad.lua:2: set_rows: argument 'piece' is missing"));
+
+    const Ran missing = runCli("run " + quoted(dir / "none.lua"));
+    CHECK(missing.exitCode == 1);
+    CHECK_THAT(missing.output, StartsWith("netsculpt: error: there is no script at"));
+
+    const fs::path loop = writeScript(dir, "loop.lua", "while true do end\n");
+    const Ran stopped = runCli("run " + quoted(loop) + " --out " + quoted(dir / "out") + " --max-instructions 1e6");
+    CHECK(stopped.exitCode == 1);
+    CHECK_THAT(stopped.output, Contains("loop.lua:1: script exceeded its budget of 10^6 instructions"));
+
+    const fs::path hungry = writeScript(dir, "hungry.lua", "local t = {} for i = 1, 1e9 do t[i] = i end\n");
+    const Ran full = runCli("run " + quoted(hungry) + " --out " + quoted(dir / "out") + " --max-memory 16");
+    CHECK(full.exitCode == 1);
+    CHECK_THAT(full.output, Contains("netsculpt: error: script exceeded 16 MiB of memory"));
+
+    const Ran args = runCli("run " + quoted(writeScript(dir, "args.lua", "print(arg[1], arg[2], #arg)")) +
+                            " --out " + quoted(dir / "out") + " -q -- --no-relax two");
+    CHECK(args.exitCode == 0);
+    CHECK_THAT(args.output, Contains("--no-relax\ttwo\t2"));
+
+    const Ran unsafe = runCli("run " + quoted(writeScript(dir, "unsafe.lua", "assert(io.popen('echo hi'):read('l') == 'hi')")) +
+                              " --out " + quoted(dir / "out") + " --unsafe");
+    CHECK(unsafe.exitCode == 0);
+    CHECK_THAT(unsafe.output, Contains("--unsafe: the sandbox is off"));
+}
+
+TEST_CASE("replay, to-lua, relax, export and report on a journal", "[cli]") {
+    const fs::path dir = freshFolder("journal");
+    const fs::path script = writeScript(dir, "small.lua", kSmallSculpture);
+    const Ran ran = runCli("run " + quoted(script) + " --out " + quoted(dir) + " -q");
+    REQUIRE(ran.exitCode == 0);
+    const std::string hash = printedHash(ran.output);
+    const fs::path journal = dir / "small.netj";
+    const auto journalBytes = fs::file_size(journal);
+
+    const Ran replay = runCli("replay " + quoted(journal) + " --out " + quoted(dir / "replayed"));
+    CHECK(replay.exitCode == 0);
+    CHECK_THAT(replay.output, Contains("1 rails, 2 pieces") && Contains("hash " + hash));
+    CHECK(fs::is_regular_file(dir / "replayed" / "small.netj"));
+    CHECK(fs::file_size(journal) == journalBytes); // read, never written
+
+    const Ran lua = runCli("to-lua " + quoted(journal));
+    CHECK(lua.exitCode == 0);
+    std::string generated = lua.output;
+    const auto end = generated.rfind("return doc");
+    REQUIRE(end != std::string::npos);
+    generated.insert(end, "print('hash ' .. doc:hash())\n");
+    const fs::path again = writeScript(dir, "again.lua", generated);
+    const Ran rerun = runCli("run " + quoted(again) + " --out " + quoted(dir / "again") + " -q --no-journal");
+    CHECK(rerun.exitCode == 0);
+    CHECK(printedHash(rerun.output) == hash); // the generated script builds the same sculpture
+
+    const Ran relax = runCli("relax " + quoted(journal) + " --tolerance 1e-2 --max-seconds 20 --out " + quoted(dir / "relaxed"));
+    CHECK(relax.exitCode == 0);
+    CHECK_THAT(relax.output, Contains("converged"));
+    const fs::path snapshot = dir / "relaxed" / "small.nets";
+    CHECK(fs::is_regular_file(snapshot));
+
+    const Ran exported = runCli("export " + quoted(snapshot) + " " + quoted(dir / "x" / "knots.csv") + " " +
+                                quoted(dir / "x" / "view.svg") + " --view top");
+    CHECK(exported.exitCode == 0);
+    CHECK(fs::is_regular_file(dir / "x" / "knots.csv"));
+    CHECK(fs::is_regular_file(dir / "x" / "view.svg"));
+    CHECK(runCli("export " + quoted(snapshot) + " " + quoted(dir / "x" / "knots.docx")).exitCode == 1);
+
+    const Ran markdown = runCli("report " + quoted(snapshot));
+    CHECK(markdown.exitCode == 0);
+    CHECK_THAT(markdown.output, Contains("#"));
+    const Ran json = runCli("report " + quoted(snapshot) + " --json");
+    CHECK(json.exitCode == 0);
+    CHECK_THAT(json.output, StartsWith("{") && Contains("\"total_mass\""));
+    const Ran csv = runCli("report " + quoted(snapshot) + " --csv");
+    CHECK(csv.exitCode == 0);
+    const Ran attachments = runCli("report " + quoted(snapshot) + " --csv attachments");
+    CHECK(attachments.exitCode == 0);
+    CHECK(csv.output != attachments.output);
+
+    const Ran broken = runCli("report " + quoted(dir / "none.netj"));
+    CHECK(broken.exitCode == 1);
+    CHECK_THAT(broken.output, StartsWith("netsculpt: error: "));
+}

@@ -1,0 +1,239 @@
+// Benchmark of the "fast" relaxation backend (kernel/physics/fast/NewtonRelaxer.h) against the
+// RK4 one, at a realistic rope's stiffness (EA 2e5 N, compression ratio 0.01, knot 2 g, 6 g/m,
+// bars 0.1 m), each net built through the model's edits and relaxed from its compiled Eq. 2
+// geometry to max |F_j| / (m_j g) <= 1e-6:
+//   tube-100x1000   100 rows x 1000 columns on a circular rail (100k knots), target < 5 s
+//   tube-100x200    100 x 200 (20k knots), target < 0.5 s
+//   slack-100x200   a sheet on an open rail whose last row is connected to a second, parallel
+//                   rail nearer than the sheet's height (it starts slack), target < 0.5 s
+// For each: wall seconds, Newton iterations (soft stage + final), factorizations, residual,
+// then the RK4 path under a time cap (residual reached) and the ratio of their times. Then one
+// force pass (Eq. 3) at 100k knots: ns per bar with 1 and 2 threads, against the memory floor
+// (about 52 bytes per bar at the measured streaming bandwidth).
+//
+//   netsculpt-bench-fast                 everything (a few minutes, RK4 caps dominate)
+//   netsculpt-bench-fast --quick         20x40 nets, short RK4 caps (CI smoke)
+//   --scene NAME   only that net          --threads N   thread count (default automatic)
+//   --rk4-cap S    RK4 time cap, s         --no-rk4      skip the RK4 runs
+
+#include "model/Compiler.h"
+#include "model/Edits.h"
+#include "physics/Forces.h"
+#include "physics/Relaxer.h"
+#include "physics/ThreadPool.h"
+#include "physics/fast/NewtonRelaxer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <numbers>
+#include <string>
+#include <thread>
+#include <vector>
+
+using namespace netsculpt;
+
+namespace {
+
+constexpr double kBar = 0.1;      // m
+constexpr double kSpacing = 0.1;  // m between the rail's knots
+
+Material rope() { return Material{2e5, 0.01, 0.002, 0.006}; }
+
+struct Scene {
+    std::string name;
+    bool slack;
+    int rows, columns;
+    double targetSeconds;
+};
+
+/// The net through the model's edits; its compiled system starts at the Eq. 2 geometry.
+MassSpringSystem build(const Scene& scene) {
+    Sculpture s;
+    PieceId piece;
+    if (!scene.slack) {
+        CurveSpec circle;
+        circle.closed = true;
+        const double radius = scene.columns * kSpacing / (2 * std::numbers::pi);
+        for (int i = 0; i < scene.columns; ++i) {
+            const double a = 2 * std::numbers::pi * i / scene.columns;
+            circle.points.push_back({radius * std::cos(a), radius * std::sin(a), 0});
+        }
+        const RailId top = addRail(s, "top", circle);
+        AttachToRailArgs args;
+        args.rail = top;
+        args.columns = scene.columns;
+        args.rows = scene.rows;
+        args.bar = kBar;
+        piece = attachToRail(s, args);
+    } else {
+        // The second rail is parallel to the first, 0.3 H aside and 0.5 H below, H the sheet's
+        // height: 0.58 H away, so the sheet hangs slack between them.
+        const double width = (scene.columns - 1) * kSpacing;
+        const double height = (scene.rows - 1) * std::sqrt(kBar * kBar - kSpacing * kSpacing / 4);
+        CurveSpec first, second;
+        first.points = {{0, 0, 0}, {width, 0, 0}};
+        second.points = {{0, 0.3 * height, -0.5 * height}, {width, 0.3 * height, -0.5 * height}};
+        const RailId top = addRail(s, "top", first);
+        const RailId bottom = addRail(s, "bottom", second);
+        AttachToRailArgs args;
+        args.rail = top;
+        args.columns = scene.columns;
+        args.rows = scene.rows;
+        args.bar = kBar;
+        piece = attachToRail(s, args);
+        connectToRail(s, piece, bottom, 0.0, false);
+    }
+    setMaterial(s, piece, rope());
+    refreshAndValidate(s);
+    return compileSculpture(s).system;
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::size_t compressedBars(const MassSpringSystem& system) {
+    std::size_t count = 0;
+    for (double t : barTensions(system))
+        count += t < 0 ? 1 : 0;
+    return count;
+}
+
+void runScene(const Scene& scene, int threads, double rk4Cap, bool rk4) {
+    const MassSpringSystem start = build(scene);
+    std::printf("\n== %s: %zu knots, %zu bars (target %.2g s)\n", scene.name.c_str(),
+                start.knotCount(), start.barCount(), scene.targetSeconds);
+
+    MassSpringSystem system = start;
+    RelaxOptions options;
+    options.threads = threads;
+    options.maxSeconds = 120;
+    FastRelaxer fast;
+    const RelaxResult result = fast.relax(system, options);
+    const NewtonStatistics& stats = fast.statistics();
+    std::printf("fast: %s in %.3f s (%s), residual %.3g, %lld Newton iterations (%lld soft at "
+                "scale %.3g), %lld factorizations (%lld failed)\n",
+                result.converged ? "converged" : "NOT converged", result.seconds,
+                result.seconds <= scene.targetSeconds ? "within target" : "over target",
+                result.residual, static_cast<long long>(stats.iterations),
+                static_cast<long long>(stats.softIterations), stats.softScale,
+                static_cast<long long>(stats.factorizations),
+                static_cast<long long>(stats.failedFactorizations));
+    std::printf("      analysis %.3f s, factorizations %.3f s (%.3g flops each, %.2f GFlop/s), "
+                "solves %.3f s, rest %.3f s; %zu bars in compression at the end\n",
+                stats.analysisSeconds, stats.factorSeconds, stats.factorFlops,
+                stats.factorizations > 0
+                    ? stats.factorFlops * static_cast<double>(stats.factorizations) /
+                          stats.factorSeconds * 1e-9
+                    : 0.0,
+                stats.solveSeconds,
+                result.seconds - stats.analysisSeconds - stats.factorSeconds - stats.solveSeconds,
+                compressedBars(system));
+    if (!rk4)
+        return;
+    MassSpringSystem reference = start;
+    RelaxOptions rk4Options = options;
+    rk4Options.maxSeconds = rk4Cap;
+    const RelaxResult slow = relaxRk4(reference, rk4Options);
+    std::printf("rk4:  %s in %.3f s, residual %.3g, %lld force evaluations\n",
+                slow.converged ? "converged" : "NOT converged (time cap)", slow.seconds,
+                slow.residual, static_cast<long long>(slow.forceEvaluations));
+    std::printf("ratio rk4 / fast: %s%.1f\n", slow.converged ? "" : ">= ",
+                slow.seconds / std::max(result.seconds, 1e-9));
+}
+
+/// Streaming read bandwidth, bytes per second (sum of a large array).
+double readBandwidth() {
+    std::vector<double> data(std::size_t(1) << 25, 1.0); // 256 MiB
+    double sum = 0, best = 0;
+    for (int pass = 0; pass < 3; ++pass) {
+        const auto t0 = std::chrono::steady_clock::now();
+        for (double v : data)
+            sum += v;
+        const double seconds = secondsSince(t0);
+        best = std::max(best, static_cast<double>(data.size() * sizeof(double)) / seconds);
+    }
+    if (sum < 0)
+        std::printf("%g", sum); // keeps the loop
+    return best;
+}
+
+void forcePass(bool quick) {
+    const Scene scene{"force pass", false, 100, quick ? 200 : 1000, 0};
+    const MassSpringSystem system = build(scene);
+    std::printf("\n== force pass (Eq. 3), %zu knots, %zu bars\n", system.knotCount(),
+                system.barCount());
+    const double bandwidth = readBandwidth();
+    const double floorNs = 52.0 / bandwidth * 1e9;
+    for (int threads : {1, 2}) {
+        ForceField field(system);
+        field.setLoad(std::nullopt, 1.0);
+        std::vector<Vec3> force(system.knotCount());
+        ThreadPool pool(threads);
+        int passes = 0;
+        const auto t0 = std::chrono::steady_clock::now();
+        do {
+            field.evaluate(system.position, force, threads > 1 ? &pool : nullptr);
+            ++passes;
+        } while (secondsSince(t0) < (quick ? 0.2 : 1.0));
+        const double ns = secondsSince(t0) / passes / static_cast<double>(system.barCount()) * 1e9;
+        std::printf("%d thread%s: %.2f ns per bar (%d passes); floor at %.1f GB/s read: %.2f ns "
+                    "per bar (52 bytes), %.1fx above\n",
+                    threads, threads > 1 ? "s" : "", ns, passes, bandwidth * 1e-9, floorNs,
+                    ns / floorNs);
+    }
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    bool quick = false, rk4 = true;
+    int threads = 0;
+    double rk4Cap = -1;
+    std::string only;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg == "--quick")
+            quick = true;
+        else if (arg == "--no-rk4")
+            rk4 = false;
+        else if (arg == "--threads" && i + 1 < argc)
+            threads = std::atoi(argv[++i]);
+        else if (arg == "--rk4-cap" && i + 1 < argc)
+            rk4Cap = std::atof(argv[++i]);
+        else if (arg == "--scene" && i + 1 < argc)
+            only = argv[++i];
+        else {
+            std::fprintf(stderr, "usage: %s [--quick] [--threads N] [--rk4-cap S] [--no-rk4] "
+                                 "[--scene NAME]\n", argv[0]);
+            return 2;
+        }
+    }
+    std::vector<Scene> scenes;
+    if (quick)
+        scenes = {{"tube-20x40", false, 20, 40, 0.05}, {"slack-20x40", true, 20, 40, 0.05}};
+    else
+        scenes = {{"tube-100x200", false, 100, 200, 0.5},
+                  {"slack-100x200", true, 100, 200, 0.5},
+                  {"tube-100x1000", false, 100, 1000, 5.0}};
+    if (rk4Cap < 0)
+        rk4Cap = quick ? 2.0 : 60.0;
+    std::printf("netsculpt-bench-fast: rope EA 2e5 N, tolerance 1e-6, threads %s, %u hardware "
+                "threads\n", threads == 0 ? "automatic" : std::to_string(threads).c_str(),
+                std::thread::hardware_concurrency());
+    try {
+        for (const Scene& scene : scenes)
+            if (only.empty() || only == scene.name)
+                runScene(scene, threads, rk4Cap, rk4);
+        if (only.empty() || only == "force")
+            forcePass(quick);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "netsculpt-bench-fast: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

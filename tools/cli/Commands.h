@@ -1,0 +1,53 @@
+#pragma once
+// The netsculpt subcommands. Each returns the process exit code (0 success); user errors are
+// thrown as UserError and reported by main() as "netsculpt: error: ..." with exit code 1.
+
+#include "Progress.h"
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace netsculpt::cli {
+
+struct RunArgs {
+    std::filesystem::path script;
+    std::vector<std::string> args;   ///< the script's arguments (arg[1..])
+    std::filesystem::path out = "."; ///< the output folder (created when missing)
+    bool unsafe = false;
+    double maxMemoryMiB = 512;       ///< 0 = no limit
+    double maxInstructions = 1e9;    ///< 0 = no budget
+    std::string backend;             ///< overrides every doc:relax; empty = the script's
+    bool journal = true;
+};
+int runScript(const RunArgs& a, Verbosity verbosity);
+
+int replayJournal(const std::filesystem::path& journal, const std::filesystem::path& out, Verbosity verbosity);
+int journalToLua(const std::filesystem::path& journal);
+
+struct RelaxArgs {
+    std::filesystem::path document;
+    std::string backend = "auto";
+    double tolerance = 1e-6;
+    double maxSeconds = 60;
+    std::int64_t maxSteps = -1;
+    std::filesystem::path out = ".";
+};
+int relaxDocument(const RelaxArgs& a, Verbosity verbosity);
+
+struct ExportArgs {
+    std::filesystem::path document;
+    std::vector<std::filesystem::path> files;
+    std::string colourBy = "piece";
+    double tubeRadius = 0;
+    int width = 1600;
+    int height = 1200;
+    std::string view = "all";
+};
+int exportDocument(const ExportArgs& a, Verbosity verbosity);
+
+enum class ReportFormat { Markdown, Json, PiecesCsv, AttachmentsCsv };
+int reportDocument(const std::filesystem::path& document, ReportFormat format);
+
+} // namespace netsculpt::cli

@@ -1,0 +1,55 @@
+#include "Progress.h"
+
+#include <cstdio>
+#include <unistd.h>
+
+namespace netsculpt::cli {
+
+namespace {
+
+std::string seconds(double s) {
+    char text[32];
+    if (s < 60) std::snprintf(text, sizeof text, "%.1f s", s);
+    else std::snprintf(text, sizeof text, "%d min %02d s", int(s / 60), int(s) % 60);
+    return text;
+}
+
+} // namespace
+
+ProgressLine::ProgressLine(Verbosity verbosity)
+    : enabled_(verbosity != Verbosity::Quiet && isatty(fileno(stderr)) != 0),
+      verbose_(verbosity == Verbosity::Verbose) {}
+
+void ProgressLine::update(const RelaxProgress& p) {
+    if (!enabled_) return;
+    char line[160];
+    const std::string left = p.estimatedSecondsLeft >= 0 ? ", about " + seconds(p.estimatedSecondsLeft) + " left" : "";
+    std::snprintf(line, sizeof line, "relaxing: residual %.2e, %lld steps, %s%s", p.residual,
+                  static_cast<long long>(p.steps), seconds(p.seconds).c_str(), left.c_str());
+    std::fprintf(stderr, "\r%s\033[K", line);
+    std::fflush(stderr);
+    shown_ = true;
+}
+
+void ProgressLine::clear() {
+    if (!shown_) return;
+    std::fprintf(stderr, "\r\033[K");
+    std::fflush(stderr);
+    shown_ = false;
+}
+
+void ProgressLine::finish(const RelaxResult& result) {
+    clear();
+    if (verbose_) std::fprintf(stderr, "netsculpt: relaxation %s\n", describeRelaxResult(result).c_str());
+}
+
+std::string describeRelaxResult(const RelaxResult& r) {
+    char text[200];
+    const char* how = r.converged ? "converged" : "stopped";
+    std::snprintf(text, sizeof text, "%s%s%s%s after %lld steps, %s, residual %.3g (%s)", how,
+                  r.converged ? "" : " (", r.converged ? "" : r.stopReason.c_str(), r.converged ? "" : ")",
+                  static_cast<long long>(r.steps), seconds(r.seconds).c_str(), r.residual, r.backend.c_str());
+    return text;
+}
+
+} // namespace netsculpt::cli

@@ -1,0 +1,314 @@
+// The window and the frame loop: GLFW callbacks and --play events both go through dispatch().
+
+#include "App.h"
+
+#include "Gl.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include "interaction/DemoScenes.h"
+#include "model/Error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+#include <thread>
+
+namespace netsculpt::studio {
+
+static_assert(keys::Escape == GLFW_KEY_ESCAPE && keys::Home == GLFW_KEY_HOME && keys::F1 == GLFW_KEY_F1 &&
+                  keys::Delete == GLFW_KEY_DELETE && keys::Up == GLFW_KEY_UP && 'A' == GLFW_KEY_A,
+              "interaction key codes are GLFW's");
+
+namespace {
+
+App& appOf(GLFWwindow* window) { return *static_cast<App*>(glfwGetWindowUserPointer(window)); }
+
+Modifiers modsOf(int mods) {
+    return Modifiers{(mods & GLFW_MOD_SHIFT) != 0, (mods & GLFW_MOD_CONTROL) != 0, (mods & GLFW_MOD_ALT) != 0};
+}
+
+MouseButton buttonOf(int button) {
+    return button == GLFW_MOUSE_BUTTON_RIGHT ? MouseButton::Right
+           : button == GLFW_MOUSE_BUTTON_MIDDLE ? MouseButton::Middle
+                                                : MouseButton::Left;
+}
+
+/// Window coordinates to framebuffer pixels (they differ on high-DPI screens).
+double framebufferScale(GLFWwindow* window) {
+    int w = 0, fw = 0, h = 0, fh = 0;
+    glfwGetWindowSize(window, &w, &h);
+    glfwGetFramebufferSize(window, &fw, &fh);
+    return w > 0 ? double(fw) / w : 1.0;
+}
+
+void onCursor(GLFWwindow* w, double x, double y) {
+    const double s = framebufferScale(w);
+    appOf(w).dispatch(MouseMove{x * s, y * s});
+}
+void onButton(GLFWwindow* w, int button, int action, int mods) {
+    if (button > GLFW_MOUSE_BUTTON_MIDDLE) return;
+    if (action == GLFW_PRESS) appOf(w).dispatch(MousePress{buttonOf(button), modsOf(mods)});
+    else if (action == GLFW_RELEASE) appOf(w).dispatch(MouseRelease{buttonOf(button), modsOf(mods)});
+}
+void onScroll(GLFWwindow* w, double, double dy) { appOf(w).dispatch(Scroll{dy}); }
+void onKey(GLFWwindow* w, int key, int, int action, int mods) {
+    if (action != GLFW_RELEASE && key != GLFW_KEY_UNKNOWN) appOf(w).dispatch(KeyPress{key, modsOf(mods)});
+}
+
+} // namespace
+
+App::App(StudioOptions options) : options_(std::move(options)) {
+    colourBy_ = options_.colourBy == "tension" ? ColourBy::Tension : ColourBy::Piece;
+    liveEnabled_ = options_.relax;
+    scriptRunner_ = makeScriptRunner();
+    if (options_.play) script_ = readEventScript(options_.play->string());
+    camera_.setViewport(options_.width, options_.height);
+    doc_ = std::make_unique<Document>();
+    interaction_ = std::make_unique<Interaction>(*doc_, camera_);
+    LiveRelaxOptions live;
+    live.threads = int(std::max(1u, std::thread::hardware_concurrency()) - 1); // a core for the UI
+    live.threads = std::max(live.threads, 1);
+    live_ = std::make_unique<LiveRelaxer>(live);
+}
+
+App::~App() {
+    live_.reset(); // stop the worker before the document goes
+    shutdownWindow();
+}
+
+void App::initWindow() {
+    if (!glfwInit()) throw std::runtime_error("cannot initialise GLFW (is there a display? try xvfb-run)");
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    glfwWindowHint(GLFW_SAMPLES, options_.samples);
+    window_ = glfwCreateWindow(options_.width, options_.height, "netsculpt studio", nullptr, nullptr);
+    if (!window_) throw std::runtime_error("cannot open an OpenGL 3.3 core window");
+    glfwMakeContextCurrent(window_);
+    glfwSwapInterval(options_.vsync ? 1 : 0);
+    glfwSetWindowUserPointer(window_, this);
+    // Ours first: ImGui's backend chains to them after updating its own state.
+    glfwSetCursorPosCallback(window_, onCursor);
+    glfwSetMouseButtonCallback(window_, onButton);
+    glfwSetScrollCallback(window_, onScroll);
+    glfwSetKeyCallback(window_, onKey);
+
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr; // panels are laid out by code; nothing to remember
+    const char* font = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+    if (std::filesystem::exists(font)) io.Fonts->AddFontFromFileTTF(font, 15.0f);
+    ImGui::StyleColorsDark();
+    ImGuiStyle& style = ImGui::GetStyle();
+    style.WindowRounding = 6;
+    style.FrameRounding = 4;
+    style.GrabRounding = 4;
+    style.WindowBorderSize = 0;
+    ImGui_ImplGlfw_InitForOpenGL(window_, true);
+    ImGui_ImplOpenGL3_Init("#version 330 core");
+    glEnable(GL_MULTISAMPLE);
+    renderer_.init();
+}
+
+void App::shutdownWindow() {
+    if (!window_) return;
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+    glfwDestroyWindow(window_);
+    window_ = nullptr;
+    glfwTerminate();
+}
+
+int App::run() {
+    buildInitialDocument();
+    initWindow();
+    int fw = 0, fh = 0;
+    glfwGetFramebufferSize(window_, &fw, &fh);
+    camera_.setViewport(fw, fh);
+    interaction_->frameAll();
+    fpsWindowStart_ = std::chrono::steady_clock::now();
+    const auto start = fpsWindowStart_;
+    long long measuredFrames = 0;
+    while (!quitRequested_ && !glfwWindowShouldClose(window_)) {
+        frame();
+        ++frameIndex_;
+        if (frameIndex_ > 1) ++measuredFrames;
+        if (options_.exitAfterFrames > 0 && frameIndex_ >= options_.exitAfterFrames) break;
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::printf("netsculpt-studio: %lld frames in %.2f s (%.1f fps), %zu knots\n", frameIndex_, seconds,
+                seconds > 0 ? double(measuredFrames) / seconds : 0.0, doc_->compiled().system.knotCount());
+    if (liveState_)
+        std::printf("netsculpt-studio: relaxation %s, residual %.3g at stiffness x%.3g\n",
+                    liveState_->running ? "running" : liveState_->stopReason.c_str(), liveState_->residual,
+                    liveState_->stiffnessScale);
+    return 0;
+}
+
+void App::frame() {
+    glfwPollEvents();
+    if (glfwWindowShouldClose(window_) && !doc_->isClean() && !options_.play && options_.exitAfterFrames < 0) {
+        glfwSetWindowShouldClose(window_, GLFW_FALSE); // ask first
+        panels_.request(FileAction::Quit, *this);
+    }
+    int fw = 0, fh = 0;
+    glfwGetFramebufferSize(window_, &fw, &fh);
+    camera_.setViewport(fw, fh);
+    playEvents();
+
+    const bool lastFrame = options_.exitAfterFrames > 0 && frameIndex_ + 1 >= options_.exitAfterFrames;
+    if (lastFrame && options_.settleSeconds > 0) {
+        syncLive(); // start the relaxation of the latest edit, then let it finish
+        live_->waitIdle(options_.settleSeconds);
+    }
+    syncLive();
+    if (options_.printHandles && frameIndex_ == 1) printHandles(*options_.printHandles);
+
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    if (options_.play) { // replayed events drive ImGui's mouse as well
+        ImGuiIO& io = ImGui::GetIO();
+        io.MousePos = ImVec2(float(cursorX_), float(cursorY_));
+        for (int b = 0; b < 3; ++b) io.MouseDown[b] = buttonDown_[b];
+    }
+    ImGui::NewFrame();
+    panels_.draw(*this);
+    ImGui::Render();
+
+    renderer_.draw(camera_, buildOverlay());
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    if (lastFrame && options_.screenshot) pendingScreenshot_ = *options_.screenshot;
+    if (pendingScreenshot_) writePendingScreenshot();
+    glfwSwapBuffers(window_);
+
+    ++fpsFrames_;
+    const auto now = std::chrono::steady_clock::now();
+    const double window = std::chrono::duration<double>(now - fpsWindowStart_).count();
+    if (window >= 0.5) {
+        fps_ = fpsFrames_ / window;
+        fpsFrames_ = 0;
+        fpsWindowStart_ = now;
+    }
+}
+
+void App::playEvents() {
+    while (nextStep_ < script_.size() && frameIndex_ >= resumeAtFrame_) {
+        const ScriptStep& step = script_[nextStep_++];
+        if (const auto* wait = std::get_if<FrameWait>(&step.what)) resumeAtFrame_ = frameIndex_ + wait->frames;
+        else dispatch(std::get<InputEvent>(step.what));
+    }
+}
+
+void App::dispatch(const InputEvent& event) {
+    const ImGuiIO* io = ImGui::GetCurrentContext() ? &ImGui::GetIO() : nullptr;
+    const bool uiHasMouse = io && io->WantCaptureMouse;
+    Interaction& ui = *interaction_;
+    if (const auto* move = std::get_if<MouseMove>(&event)) {
+        cursorX_ = move->x, cursorY_ = move->y;
+        ui.handle(event);
+    } else if (const auto* press = std::get_if<MousePress>(&event)) {
+        buttonDown_[int(press->button)] = true;
+        notice_.clear();
+        if (!uiHasMouse && !restorePending_) ui.handle(event);
+    } else if (const auto* release = std::get_if<MouseRelease>(&event)) {
+        buttonDown_[int(release->button)] = false;
+        ui.handle(event); // always: a gesture that started in the view ends wherever the mouse is
+    } else if (std::holds_alternative<Scroll>(event)) {
+        if (!uiHasMouse) ui.handle(event);
+    } else if (const auto* key = std::get_if<KeyPress>(&event)) {
+        if ((io && io->WantTextInput) || restorePending_) return;
+        notice_.clear();
+        const Modifiers m = key->mods;
+        if (m.ctrl && key->key == 'O') return panels_.request(FileAction::Open, *this);
+        if (m.ctrl && key->key == 'S') return panels_.request(m.shift ? FileAction::SaveAs : FileAction::Save, *this);
+        if (m.ctrl && key->key == 'Q') return panels_.request(FileAction::Quit, *this);
+        if (key->key == keys::F1 + 11) return panels_.request(FileAction::Screenshot, *this);
+        ui.handle(event);
+    }
+}
+
+void App::syncLive() {
+    Document& doc = *doc_;
+    if (interaction_->version() != shownVersion_) {
+        shownVersion_ = interaction_->version();
+        renderer_.setSculpture(doc.sculpture(), doc.compiled());
+        positionsDirty_ = true;
+        reportDirty_ = true;
+        residualHistory_.clear();
+        if (liveEnabled_) live_->preview(doc.compiled().system, shownVersion_);
+    }
+    if (const auto state = live_->latest(); state && state->sequence != seenSequence_) {
+        seenSequence_ = state->sequence;
+        liveState_ = state;
+        if (state->generation == shownVersion_ && state->positions.size() == doc.compiled().system.knotCount()) {
+            doc.compiled().system.position = state->positions; // the next edit warm-starts from here
+            positionsDirty_ = true;
+            reportDirty_ = true;
+            if (state->residual > 0) residualHistory_.push_back(float(std::log10(state->residual)));
+            if (residualHistory_.size() > 400) residualHistory_.erase(residualHistory_.begin());
+        }
+    }
+    if (positionsDirty_) {
+        renderer_.setPositions(doc.sculpture(), doc.compiled().system, colourBy_);
+        interaction_->refresh();
+        positionsDirty_ = false;
+    }
+}
+
+Overlay App::buildOverlay() const {
+    Overlay o;
+    const Interaction& ui = *interaction_;
+    o.highlight = ui.selectedPiece() ? ui.selectedPiece() : ui.hoveredPiece();
+    auto colourOf = [](HandleKind kind) -> std::array<float, 4> {
+        switch (kind) {
+        case HandleKind::RailPoint: return {0.92f, 0.92f, 0.95f, 1};
+        case HandleKind::LastRow: return {0.35f, 0.85f, 0.45f, 1};
+        case HandleKind::TopKnot: return {0.98f, 0.82f, 0.25f, 1};
+        case HandleKind::RowsEnd: return {0.30f, 0.80f, 0.95f, 1};
+        case HandleKind::ColumnsEdge: return {0.70f, 0.55f, 0.98f, 1};
+        case HandleKind::BarEnd: return {0.98f, 0.60f, 0.25f, 1};
+        case HandleKind::ConnectSource: return {0.35f, 0.85f, 0.45f, 1};
+        case HandleKind::ConnectTarget: return {0.92f, 0.92f, 0.95f, 1};
+        }
+        return {1, 1, 1, 1};
+    };
+    for (const Handle& h : ui.handles())
+        o.spheres.push_back({h.position, camera_.worldPerPixels(h.position, h.pixelRadius), colourOf(h.kind)});
+    if (ui.hovered() >= 0) {
+        const Handle& h = ui.handles()[std::size_t(ui.hovered())];
+        o.translucent.push_back({h.position, camera_.worldPerPixels(h.position, h.pixelRadius * 1.8), {1, 0.12f, 0.08f, 0.45f}});
+    }
+    if (const auto& dragged = ui.dragged(); dragged && dragged->kind == HandleKind::ConnectSource) {
+        const Ray ray = camera_.rayAt(ui.cursorX(), ui.cursorY());
+        const Vec3 carried = ray.origin + ray.direction * distance(ray.origin, dragged->position);
+        o.guides.push_back({dragged->position, carried});
+        o.spheres.push_back({carried, camera_.worldPerPixels(carried, dragged->pixelRadius), colourOf(dragged->kind)});
+    }
+    return o;
+}
+
+void App::printHandles(const std::string& mode) {
+    Interaction& ui = *interaction_;
+    const Mode before = ui.mode();
+    for (Mode m : kAllModes)
+        if (modeName(m) == mode) ui.setMode(m);
+    for (std::size_t i = 0; i < ui.handles().size(); ++i) {
+        const Handle& h = ui.handles()[i];
+        const ScreenPoint sp = camera_.project(h.position);
+        std::printf("handle %zu piece %u rail %u row %d column %d t %.6g at %.1f %.1f%s\n", i, h.piece.value,
+                    h.rail.value, h.row, h.column, h.t, sp.x, sp.y, sp.visible ? "" : " (off screen)");
+    }
+    ui.setMode(before);
+}
+
+} // namespace netsculpt::studio

@@ -1,0 +1,130 @@
+#pragma once
+// netsculpt-studio: the window, the frame loop and the glue between GLFW, the interaction layer,
+// the live relaxer, the renderer and the panels. Window events and replayed events (--play) both
+// enter through dispatch(), so a recorded session drives exactly what a user's mouse does.
+
+#include "Panels.h"
+#include "Renderer.h"
+#include "ScriptRunner.h"
+#include "StudioOptions.h"
+
+#include "commands/Document.h"
+#include "interaction/EventScript.h"
+#include "interaction/Interaction.h"
+#include "interaction/LiveRelaxer.h"
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <memory>
+#include <optional>
+
+struct GLFWwindow;
+
+namespace netsculpt::studio {
+
+class App {
+  public:
+    explicit App(StudioOptions options);
+    ~App();
+    App(const App&) = delete;
+    App& operator=(const App&) = delete;
+
+    /// Opens the window and runs until it is closed or --exit-after-frames; returns the exit code.
+    int run();
+
+    /// Every input event, from GLFW's callbacks or from the --play file.
+    void dispatch(const InputEvent& event);
+
+    // ---- what the panels use ----
+    Document& document() { return *doc_; }
+    Interaction& interaction() { return *interaction_; }
+    Camera& camera() { return camera_; }
+    std::shared_ptr<const LiveState> liveState() const { return liveState_; }
+    bool liveEnabled() const { return liveEnabled_; }
+    void setLiveEnabled(bool on);
+    ColourBy colourBy() const { return colourBy_; }
+    void setColourBy(ColourBy c);
+    void refine();
+    double framesPerSecond() const { return fps_; }
+    double maxTension() const { return renderer_.maxTension(); }
+    /// The report of the current shape (recomputed at most twice a second while things change).
+    const nlohmann::json* report();
+    const std::vector<float>& residualHistory() const { return residualHistory_; }
+    const std::optional<std::filesystem::path>& currentPath() const { return currentPath_; }
+    const std::filesystem::path& sessionJournal() const { return sessionPath_; }
+    bool canRunScripts() const { return scriptRunner_ != nullptr; }
+
+    // File actions: each reports success or its error through the status line (never throws).
+    bool openJournal(const std::filesystem::path& path);
+    bool saveJournal(const std::filesystem::path& path);
+    bool importRails(const std::filesystem::path& path);
+    bool exportTo(const std::filesystem::path& path);
+    bool runScript(const std::filesystem::path& path);
+    bool takeScreenshot(const std::filesystem::path& path);
+    void newDocument();
+    /// Answer to the start-up question: restore the previous session's journal or start afresh.
+    void answerRestore(bool restore);
+    bool restorePending() const { return restorePending_; }
+    void quit() { quitRequested_ = true; }
+    void notify(const std::string& message, bool error);
+    const std::string& notice() const { return notice_; }
+    bool noticeIsError() const { return noticeIsError_; }
+
+  private:
+    void initWindow();
+    void shutdownWindow();
+    void buildInitialDocument();
+    void attachSession();
+    void replaceDocument(Document next);
+    void frame();
+    void playEvents();
+    void syncLive();
+    Overlay buildOverlay() const;
+    void printHandles(const std::string& mode);
+    void writePendingScreenshot();
+
+    StudioOptions options_;
+    GLFWwindow* window_ = nullptr;
+    std::unique_ptr<Document> doc_;
+    Camera camera_;
+    std::unique_ptr<Interaction> interaction_;
+    std::unique_ptr<LiveRelaxer> live_;
+    std::unique_ptr<ScriptRunner> scriptRunner_;
+    Renderer renderer_;
+    Panels panels_;
+
+    std::filesystem::path sessionPath_;
+    std::optional<std::filesystem::path> currentPath_;
+    bool restorePending_ = false;
+    bool quitRequested_ = false;
+    std::optional<std::filesystem::path> pendingScreenshot_; ///< written after this frame is drawn
+
+    std::vector<ScriptStep> script_;
+    std::size_t nextStep_ = 0;
+    long long resumeAtFrame_ = 0;
+    long long frameIndex_ = 0;
+    double cursorX_ = 0, cursorY_ = 0;
+    bool buttonDown_[3] = {false, false, false};
+
+    std::uint64_t shownVersion_ = 0;     ///< interaction version the renderer and relaxer have
+    std::uint64_t seenSequence_ = 0;     ///< last LiveState sequence taken
+    std::shared_ptr<const LiveState> liveState_;
+    bool liveEnabled_ = true;
+    ColourBy colourBy_ = ColourBy::Piece;
+    bool positionsDirty_ = true;
+    std::vector<float> residualHistory_;
+
+    nlohmann::json report_;
+    bool reportValid_ = false;
+    bool reportDirty_ = true;
+    std::chrono::steady_clock::time_point reportTime_{};
+
+    std::string notice_;
+    bool noticeIsError_ = false;
+    double fps_ = 0;
+    std::chrono::steady_clock::time_point fpsWindowStart_{};
+    int fpsFrames_ = 0;
+};
+
+} // namespace netsculpt::studio

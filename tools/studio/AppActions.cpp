@@ -1,0 +1,212 @@
+// The studio's document-level actions: the starting document, the session journal, files,
+// scripts, the report, and the live relaxation switches.
+
+#include "App.h"
+
+#include "Screenshot.h"
+
+#include "commands/Journal.h"
+#include "interaction/DemoScenes.h"
+#include "io/Export.h"
+#include "io/Import.h"
+#include "io/Report.h"
+#include "model/Error.h"
+
+#include <cstdio>
+
+namespace netsculpt::studio {
+
+namespace {
+
+/// Runs `action`; a UserError or any other failure becomes a notice. Returns whether it worked.
+template <typename F> bool attempt(App& app, const std::string& what, F&& action) {
+    try {
+        action();
+        return true;
+    } catch (const std::exception& e) {
+        app.notify(what + ": " + e.what(), true);
+        return false;
+    }
+}
+
+bool hasEntries(const std::filesystem::path& journal) {
+    try {
+        return std::filesystem::exists(journal) && !readJournal(journal).entries.empty();
+    } catch (const std::exception&) {
+        return std::filesystem::exists(journal); // unreadable: still worth offering (open will say why)
+    }
+}
+
+} // namespace
+
+void App::notify(const std::string& message, bool error) {
+    notice_ = message;
+    noticeIsError_ = error;
+    std::fprintf(error ? stderr : stdout, "netsculpt-studio: %s\n", message.c_str());
+}
+
+void App::buildInitialDocument() {
+    sessionPath_ = options_.journal.value_or(defaultSessionJournal());
+    if (options_.open) {
+        std::vector<std::string> warnings;
+        *doc_ = Document::open(*options_.open, &warnings);
+        for (const std::string& w : warnings) notify(w, false);
+        currentPath_ = *options_.open;
+    } else if (options_.demoKnots > 0) {
+        buildLargeDemoSculpture(*doc_, options_.demoKnots);
+        doc_->markClean();
+    } else if (options_.demo) {
+        buildDemoSculpture(*doc_);
+        doc_->markClean();
+    } else if (options_.script) {
+        if (!scriptRunner_)
+            throw UserError("--script: this studio was built without the Lua binding; use --demo or --open");
+        scriptRunner_->run(*doc_, *options_.script);
+        doc_->markClean();
+    }
+    const bool startsEmpty = !options_.open && !options_.demo && options_.demoKnots == 0 && !options_.script;
+    if (startsEmpty && !options_.journal && !options_.play && hasEntries(sessionPath_)) restorePending_ = true;
+    else attachSession();
+    interaction_->setDocument(*doc_);
+}
+
+void App::attachSession() {
+    std::filesystem::create_directories(sessionPath_.parent_path().empty() ? "." : sessionPath_.parent_path());
+    if (!options_.journal && std::filesystem::exists(sessionPath_)) {
+        // The default session is kept once more, in case the restore question was answered wrongly.
+        std::filesystem::path previous = sessionPath_;
+        previous.replace_extension(".previous.netj");
+        std::error_code ignored;
+        std::filesystem::copy_file(sessionPath_, previous, std::filesystem::copy_options::overwrite_existing, ignored);
+    }
+    doc_->attachJournal(sessionPath_);
+}
+
+void App::answerRestore(bool restore) {
+    restorePending_ = false;
+    if (restore && attempt(*this, "restore " + sessionPath_.string(), [&] {
+            std::vector<std::string> warnings;
+            Document restored = Document::open(sessionPath_, &warnings); // keeps appending to the session
+            replaceDocument(std::move(restored));
+            for (const std::string& w : warnings) notify(w, false);
+        })) {
+        notify("restored the last session (" + sessionPath_.string() + ")", false);
+        return;
+    }
+    attempt(*this, "session journal", [&] { attachSession(); });
+}
+
+void App::replaceDocument(Document next) {
+    live_->cancel();
+    *doc_ = std::move(next);
+    interaction_->setDocument(*doc_);
+    interaction_->frameAll();
+}
+
+void App::newDocument() {
+    attempt(*this, "new", [&] {
+        replaceDocument(Document{});
+        attachSession();
+        currentPath_.reset();
+    });
+}
+
+bool App::openJournal(const std::filesystem::path& path) {
+    return attempt(*this, "open " + path.string(), [&] {
+        std::vector<std::string> warnings;
+        Document opened = Document::open(path, &warnings);
+        replaceDocument(std::move(opened));
+        attachSession(); // journaling goes on in the session; the opened file changes only on save
+        doc_->markClean();
+        currentPath_ = path;
+        for (const std::string& w : warnings) notify(w, false);
+        notify("opened " + path.string(), false);
+    });
+}
+
+bool App::saveJournal(const std::filesystem::path& path) {
+    return attempt(*this, "save " + path.string(), [&] {
+        doc_->save(path);
+        currentPath_ = path;
+        notify("saved " + path.string(), false);
+    });
+}
+
+bool App::importRails(const std::filesystem::path& path) {
+    return attempt(*this, "import " + path.string(), [&] {
+        std::vector<NamedCurve> rails = importRailsFile(path);
+        const std::size_t count = rails.size();
+        if (interaction_->execute(ImportRailsCommand{path.string(), std::move(rails)}))
+            notify("imported " + std::to_string(count) + " rail(s) from " + path.string(), false);
+    });
+}
+
+bool App::exportTo(const std::filesystem::path& path) {
+    return attempt(*this, "export " + path.string(), [&] {
+        ExportOptions o;
+        o.colourBy = colourBy_ == ColourBy::Tension ? "tension" : "piece";
+        exportFile(*doc_, path, o);
+        notify("exported " + path.string(), false);
+    });
+}
+
+bool App::runScript(const std::filesystem::path& path) {
+    if (!scriptRunner_) {
+        notify("run script: this studio was built without the Lua binding", true);
+        return false;
+    }
+    return attempt(*this, "script " + path.string(), [&] {
+        scriptRunner_->run(*doc_, path);
+        interaction_->setDocument(*doc_);
+        interaction_->frameAll();
+        notify("ran " + path.string(), false);
+    });
+}
+
+bool App::takeScreenshot(const std::filesystem::path& path) {
+    pendingScreenshot_ = path;
+    return true;
+}
+
+void App::writePendingScreenshot() {
+    const std::filesystem::path path = *pendingScreenshot_;
+    pendingScreenshot_.reset();
+    attempt(*this, "screenshot", [&] {
+        writeFramebufferPng(path, camera_.width(), camera_.height());
+        notify("screenshot " + path.string(), false);
+    });
+}
+
+void App::refine() {
+    live_->refine(doc_->compiled().system, shownVersion_);
+    residualHistory_.clear();
+}
+
+void App::setLiveEnabled(bool on) {
+    liveEnabled_ = on;
+    if (on) live_->preview(doc_->compiled().system, shownVersion_);
+    else live_->cancel();
+}
+
+void App::setColourBy(ColourBy c) {
+    colourBy_ = c;
+    positionsDirty_ = true;
+}
+
+const nlohmann::json* App::report() {
+    const auto now = std::chrono::steady_clock::now();
+    if (reportDirty_ && now - reportTime_ > std::chrono::milliseconds(500)) {
+        reportDirty_ = false;
+        reportTime_ = now;
+        try {
+            report_ = buildReport(*doc_);
+            reportValid_ = true;
+        } catch (const std::exception& e) {
+            reportValid_ = false;
+            notify(std::string("report: ") + e.what(), true);
+        }
+    }
+    return reportValid_ ? &report_ : nullptr;
+}
+
+} // namespace netsculpt::studio

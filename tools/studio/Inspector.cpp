@@ -1,0 +1,190 @@
+// The inspector on the left: the piece selected (or under the mouse), the rails and the report
+// summary. Every edit executes a command through the interaction layer (undoable, journaled).
+
+#include "Panels.h"
+
+#include "App.h"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <cmath>
+
+namespace netsculpt::studio {
+
+namespace {
+
+constexpr ImGuiInputTextFlags kOnEnter = ImGuiInputTextFlags_EnterReturnsTrue;
+
+bool editDouble(const char* label, double value, double& out, const char* format = "%.4g") {
+    out = value;
+    return ImGui::InputDouble(label, &out, 0, 0, format, kOnEnter) && std::isfinite(out) && out != value;
+}
+
+std::string railLabel(const Sculpture& s, RailId id) {
+    return s.hasRail(id) ? toString(id) + " (" + s.rail(id).name + ")" : toString(id);
+}
+
+double magnitude(const nlohmann::json& v) {
+    if (v.is_object()) return std::hypot(v.value("x", 0.0), v.value("y", 0.0), v.value("z", 0.0));
+    if (v.is_array() && v.size() == 3) return std::hypot(v[0].get<double>(), v[1].get<double>(), v[2].get<double>());
+    return 0;
+}
+
+} // namespace
+
+void Panels::drawInspector(App& app) {
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + 8, vp->Pos.y + menuHeight_ + 8));
+    ImGui::SetNextWindowSizeConstraints(ImVec2(kLeftWidth, 0), ImVec2(kLeftWidth, vp->Size.y - menuHeight_ - 60));
+    ImGui::SetNextWindowBgAlpha(0.85f);
+    if (!ImGui::Begin("Inspector", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_AlwaysAutoResize |
+                                                ImGuiWindowFlags_NoSavedSettings)) {
+        ImGui::End();
+        return;
+    }
+    const Interaction& ui = app.interaction();
+    const PieceId shown = ui.selectedPiece() ? ui.selectedPiece() : ui.hoveredPiece();
+    if (ImGui::CollapsingHeader("Piece", ImGuiTreeNodeFlags_DefaultOpen)) {
+        if (shown && app.document().sculpture().hasPiece(shown)) drawPiece(app, shown);
+        else ImGui::TextDisabled("Click a net to select it.");
+    }
+    if (ImGui::CollapsingHeader("Rails")) drawRails(app);
+    if (ImGui::CollapsingHeader("Report", ImGuiTreeNodeFlags_DefaultOpen)) drawReport(app);
+    ImGui::End();
+}
+
+void Panels::drawPiece(App& app, PieceId id) {
+    Interaction& ui = app.interaction();
+    const Sculpture& s = app.document().sculpture();
+    const Piece p = s.piece(id); // a copy: a command below may replace the sculpture
+    ImGui::PushID(int(id.value));
+    ImGui::PushItemWidth(140);
+    ImGui::Text("%s%s", toString(id).c_str(), ui.selectedPiece() == id ? "" : "  (under the mouse)");
+
+    std::string name = p.name;
+    if (ImGui::InputText("name", &name, kOnEnter) && name != p.name) ui.execute(RenamePieceCommand{id, name});
+
+    int rows = p.rows;
+    if (ImGui::InputInt("rows", &rows, 1, 10, kOnEnter) && rows != p.rows) ui.execute(SetRowsCommand{id, rows});
+    if (p.onRail() || p.parentTop().whole) {
+        int columns = p.columns;
+        if (ImGui::InputInt("columns", &columns, 1, 10, kOnEnter) && columns != p.columns)
+            ui.execute(SetColumnsCommand{id, columns});
+    } else {
+        ImGui::Text("columns %d (a split part)", p.columns);
+    }
+    if (!p.onRail() && p.parentTop().whole) {
+        const Gear gear = p.parentTop().gear;
+        if (ImGui::BeginCombo("gear", toString(gear).c_str())) {
+            for (Gear g : allowedGears())
+                if (ImGui::Selectable(toString(g).c_str(), g == gear) && g != gear) ui.execute(SetGearCommand{id, g});
+            ImGui::EndCombo();
+        }
+    }
+    ImGui::TextDisabled("%s, %d knots", p.closed ? "closed tube" : "open sheet", p.rows * p.columns);
+    if (p.onRail())
+        ImGui::TextDisabled("top: %s at t = %.4g", railLabel(s, p.railTop().rail).c_str(), p.railTop().at);
+    else
+        ImGui::TextDisabled("top: below %s, gear %s", toString(p.parentTop().parents.front()).c_str(),
+                            toString(p.parentTop().gear).c_str());
+    if (p.bottom) {
+        ImGui::TextDisabled("bottom: %s at t = %.4g", railLabel(s, p.bottom->rail).c_str(), p.bottom->at);
+        ImGui::SameLine();
+        if (ImGui::SmallButton("disconnect")) ui.execute(DisconnectCommand{id});
+    }
+
+    // Bar lengths: by column (first, last) or by row (top, last row).
+    const bool byRow = p.bar.axis == BarAxis::Row;
+    const int lastIndex = byRow ? p.rows - 1 : p.columns - 1;
+    const double first = p.bar.at(0), last = p.bar.at(lastIndex);
+    const bool seamed = s.leftPartner(id) || s.rightPartner(id);
+    double value = 0;
+    if (first == last && !seamed && !byRow) {
+        if (editDouble("bar (m)", first, value)) ui.execute(SetBarLengthCommand{id, std::nullopt, std::nullopt, value});
+    } else {
+        auto cmd = [&](int index, double length) {
+            return byRow ? SetBarLengthCommand{id, std::nullopt, index, length}
+                         : SetBarLengthCommand{id, index, std::nullopt, length};
+        };
+        if (editDouble(byRow ? "bar top (m)" : "bar first (m)", first, value)) ui.execute(cmd(0, value));
+        if (editDouble(byRow ? "bar last row (m)" : "bar last (m)", last, value)) ui.execute(cmd(lastIndex, value));
+    }
+
+    if (ImGui::TreeNode("material")) {
+        Material m = p.material;
+        const Material before = m;
+        editDouble("EA (N)", before.stiffness, m.stiffness);
+        editDouble("compression ratio", before.compressionRatio, m.compressionRatio);
+        editDouble("knot mass (kg)", before.knotMass, m.knotMass);
+        editDouble("rope (kg/m)", before.linearDensity, m.linearDensity);
+        if (!(m == before)) ui.execute(SetMaterialCommand{id, m});
+        ImGui::TreePop();
+    }
+
+    // The colour is applied once the mouse is released (one command per pick, not per drag step).
+    if (colourPiece_ != id || !colourPending_) {
+        colourPiece_ = id;
+        colour_[0] = float(p.colour.r), colour_[1] = float(p.colour.g), colour_[2] = float(p.colour.b);
+    }
+    if (ImGui::ColorEdit3("colour", colour_, ImGuiColorEditFlags_NoInputs)) colourPending_ = true;
+    if (colourPending_ && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+        colourPending_ = false;
+        ui.execute(SetColourCommand{id, Colour{colour_[0], colour_[1], colour_[2]}});
+    }
+    if (ImGui::Button("remove (with the pieces below)")) ui.execute(RemovePieceCommand{id});
+    ImGui::PopItemWidth();
+    ImGui::PopID();
+}
+
+void Panels::drawRails(App& app) {
+    Interaction& ui = app.interaction();
+    const Sculpture& s = app.document().sculpture();
+    if (s.rails.empty()) ImGui::TextDisabled("No rails: import some (File > Import rails).");
+    for (const auto& [id, rail] : s.rails) {
+        ImGui::PushID(int(id.value));
+        std::string name = rail.name;
+        ImGui::SetNextItemWidth(120);
+        const RailId railId = id;
+        const std::size_t users = s.piecesOnRail(id).size();
+        const double length = rail.curve().length();
+        const bool closed = rail.curve().closed();
+        if (ImGui::InputText("##name", &name, kOnEnter) && name != rail.name) {
+            ui.execute(RenameRailCommand{railId, name});
+            ImGui::PopID();
+            break; // the rails changed under the loop
+        }
+        ImGui::SameLine();
+        ImGui::TextDisabled("%s %.2f m, %zu piece%s", closed ? "closed" : "open", length, users, users == 1 ? "" : "s");
+        ImGui::PopID();
+    }
+}
+
+void Panels::drawReport(App& app) {
+    const nlohmann::json* report = app.report();
+    if (!report) {
+        ImGui::TextDisabled("No report yet.");
+        return;
+    }
+    try {
+        const nlohmann::json& r = *report;
+        ImGui::Text("rope length   %.2f m", r.value("rope_length", 0.0));
+        ImGui::Text("mass          %.3f kg", r.value("total_mass", 0.0));
+        ImGui::Text("max tension   %.2f N", r.value("max_tension", 0.0));
+        double load = 0;
+        std::string where = "-";
+        for (const auto& rail : r.value("rails", nlohmann::json::array())) {
+            const double m = magnitude(rail.value("reaction", nlohmann::json()));
+            if (m > load) load = m, where = rail.value("name", std::string());
+        }
+        ImGui::Text("largest rail load %.2f N (%s)", load, where.c_str());
+        ImGui::TextDisabled("%zu slack bars, %s shape", r.value("slack_bars", std::size_t{0}),
+                            app.liveState() && app.liveState()->converged && app.liveState()->stiffnessScale == 1
+                                ? "relaxed"
+                                : "preview");
+    } catch (const nlohmann::json::exception& e) {
+        ImGui::TextDisabled("report: %s", e.what());
+    }
+}
+
+} // namespace netsculpt::studio

@@ -1,0 +1,296 @@
+#include "Panels.h"
+
+#include "App.h"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <cmath>
+#include <cstdio>
+
+namespace netsculpt::studio {
+
+namespace {
+
+const char* actionTitle(FileAction a) {
+    switch (a) {
+    case FileAction::New: return "New sculpture";
+    case FileAction::Open: return "Open journal";
+    case FileAction::Save: return "Save journal";
+    case FileAction::SaveAs: return "Save journal as";
+    case FileAction::ImportRails: return "Import rails (.dxf, .obj, .csv)";
+    case FileAction::Export: return "Export (.csv .obj .ply .glb .json .svg .png)";
+    case FileAction::RunScript: return "Run Lua script";
+    case FileAction::Screenshot: return "Screenshot (.png)";
+    case FileAction::Quit: return "Quit";
+    }
+    return "";
+}
+
+bool dropsChanges(FileAction a) { return a == FileAction::New || a == FileAction::Open || a == FileAction::Quit; }
+bool needsPath(FileAction a) { return a != FileAction::New && a != FileAction::Quit; }
+
+const char* shortcut(Mode m) {
+    switch (m) {
+    case Mode::View: return "V / 1";
+    case Mode::NewNet: return "N / 2";
+    case Mode::Divide: return "D / 3";
+    case Mode::Rows: return "R / 4";
+    case Mode::Columns: return "C / 5";
+    case Mode::BarLength: return "B / 6";
+    case Mode::Connect: return "J / 7";
+    }
+    return "";
+}
+
+const char* modeHint(Mode m) {
+    switch (m) {
+    case Mode::View: return "Drag to orbit, right-drag to pan, wheel to zoom, click a net to select it.";
+    case Mode::NewNet: return "Click a sphere on a rail or under a last row to hang a new net there.";
+    case Mode::Divide: return "Click a top knot to split the piece at that column.";
+    case Mode::Rows: return "Drag a sphere down to add rows, up to remove them (8 px per row).";
+    case Mode::Columns: return "Drag up for more columns (on a rail) or a larger gear (below a piece).";
+    case Mode::BarLength: return "Drag up for shorter bars, down for longer (seam partners follow).";
+    case Mode::Connect: return "Drag a last-row sphere onto a rail sphere to connect it there.";
+    }
+    return "";
+}
+
+} // namespace
+
+void Panels::request(FileAction action, App& app) {
+    if (dropsChanges(action) && !app.document().isClean()) {
+        askUnsaved_ = action;
+        openUnsavedPopup_ = true;
+        return;
+    }
+    perform(action, app);
+}
+
+void Panels::perform(FileAction action, App& app) {
+    if (action == FileAction::Save && app.currentPath()) {
+        app.saveJournal(*app.currentPath());
+        return;
+    }
+    if (!needsPath(action)) {
+        if (action == FileAction::New) app.newDocument();
+        else app.quit();
+        return;
+    }
+    askPath_ = action == FileAction::Save ? FileAction::SaveAs : action;
+    if (action == FileAction::Screenshot) path_ = "netsculpt-studio.png";
+    else if (app.currentPath() && (action == FileAction::SaveAs || action == FileAction::Open))
+        path_ = app.currentPath()->string();
+    openPathPopup_ = true;
+}
+
+void Panels::performWithPath(FileAction action, App& app, const std::string& path) {
+    switch (action) {
+    case FileAction::Open: app.openJournal(path); break;
+    case FileAction::Save:
+    case FileAction::SaveAs: app.saveJournal(path); break;
+    case FileAction::ImportRails: app.importRails(path); break;
+    case FileAction::Export: app.exportTo(path); break;
+    case FileAction::RunScript: app.runScript(path); break;
+    case FileAction::Screenshot: app.takeScreenshot(path); break;
+    default: break;
+    }
+}
+
+void Panels::draw(App& app) {
+    drawMenu(app);
+    drawToolbar(app);
+    drawInspector(app);
+    drawSolver(app);
+    drawStatus(app);
+    drawDialogs(app);
+}
+
+void Panels::drawMenu(App& app) {
+    if (!ImGui::BeginMainMenuBar()) return;
+    menuHeight_ = ImGui::GetWindowSize().y;
+    if (ImGui::BeginMenu("File")) {
+        if (ImGui::MenuItem("New")) request(FileAction::New, app);
+        if (ImGui::MenuItem("Open journal...", "Ctrl+O")) request(FileAction::Open, app);
+        if (ImGui::MenuItem("Save journal", "Ctrl+S")) request(FileAction::Save, app);
+        if (ImGui::MenuItem("Save journal as...", "Ctrl+Shift+S")) request(FileAction::SaveAs, app);
+        ImGui::Separator();
+        if (ImGui::MenuItem("Run Lua script...", nullptr, false, app.canRunScripts())) request(FileAction::RunScript, app);
+        if (ImGui::MenuItem("Import rails...")) request(FileAction::ImportRails, app);
+        if (ImGui::MenuItem("Export...")) request(FileAction::Export, app);
+        if (ImGui::MenuItem("Screenshot...", "F12")) request(FileAction::Screenshot, app);
+        ImGui::Separator();
+        if (ImGui::MenuItem("Quit", "Ctrl+Q")) request(FileAction::Quit, app);
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("Edit")) {
+        if (ImGui::MenuItem("Undo", "Ctrl+Z", false, app.document().canUndo())) app.interaction().undo();
+        if (ImGui::MenuItem("Redo", "Ctrl+Shift+Z", false, app.document().canRedo())) app.interaction().redo();
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("View")) {
+        if (ImGui::MenuItem("Frame all", "Home")) app.interaction().frameAll();
+        if (ImGui::MenuItem("Top", "T")) app.camera().setPreset(ViewPreset::Top);
+        if (ImGui::MenuItem("Front", "F")) app.camera().setPreset(ViewPreset::Front);
+        if (ImGui::MenuItem("Side", "S")) app.camera().setPreset(ViewPreset::Side);
+        if (ImGui::MenuItem("Perspective", "P")) app.camera().setPreset(ViewPreset::Perspective);
+        ImGui::Separator();
+        if (ImGui::MenuItem("Colour by piece", nullptr, app.colourBy() == ColourBy::Piece)) app.setColourBy(ColourBy::Piece);
+        if (ImGui::MenuItem("Colour by tension", nullptr, app.colourBy() == ColourBy::Tension)) app.setColourBy(ColourBy::Tension);
+        ImGui::EndMenu();
+    }
+    const std::string title = (app.currentPath() ? app.currentPath()->filename().string() : std::string("untitled")) +
+                              (app.document().isClean() ? "" : " *");
+    ImGui::SameLine(ImGui::GetWindowWidth() - ImGui::CalcTextSize(title.c_str()).x - 16);
+    ImGui::TextDisabled("%s", title.c_str());
+    ImGui::EndMainMenuBar();
+}
+
+void Panels::drawToolbar(App& app) {
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + kLeftWidth + 16, vp->Pos.y + menuHeight_ + 8));
+    ImGui::SetNextWindowBgAlpha(0.85f);
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                                   ImGuiWindowFlags_NoMove;
+    if (ImGui::Begin("##toolbar", nullptr, flags)) {
+        Interaction& ui = app.interaction();
+        for (Mode m : kAllModes) {
+            const bool active = ui.mode() == m;
+            if (active) ImGui::PushStyleColor(ImGuiCol_Button, ImGui::GetStyleColorVec4(ImGuiCol_ButtonActive));
+            const std::string label(modeName(m));
+            if (ImGui::Button(label.c_str())) ui.setMode(m);
+            if (active) ImGui::PopStyleColor();
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s  (%s)", modeHint(m), shortcut(m));
+            ImGui::SameLine();
+        }
+        ImGui::TextDisabled("|");
+        ImGui::SameLine();
+        if (ImGui::Button("undo")) ui.undo();
+        ImGui::SameLine();
+        if (ImGui::Button("redo")) ui.redo();
+        ImGui::SameLine();
+        if (ImGui::Button("refine")) app.refine();
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Relax at the material's stiffness until the residual is below 1e-6");
+    }
+    ImGui::End();
+}
+
+void Panels::drawSolver(App& app) {
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x - kRightWidth - 8, vp->Pos.y + menuHeight_ + 8));
+    ImGui::SetNextWindowSize(ImVec2(kRightWidth, 0));
+    ImGui::SetNextWindowBgAlpha(0.85f);
+    if (ImGui::Begin("Solver", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                                            ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings)) {
+        const MassSpringSystem& sys = app.document().compiled().system;
+        ImGui::Text("%zu knots, %zu bars", sys.knotCount(), sys.barCount());
+        bool live = app.liveEnabled();
+        if (ImGui::Checkbox("live relaxation", &live)) app.setLiveEnabled(live);
+        if (const auto s = app.liveState()) {
+            const char* phase = s->phase == LivePhase::Refine ? "refine" : "preview";
+            if (s->running) ImGui::Text("%s: relaxing...", phase);
+            else if (s->stopReason == "error") ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "%s: %s", phase, s->error.c_str());
+            else ImGui::Text("%s: %s", phase, s->stopReason.c_str());
+            ImGui::Text("residual %.3g at stiffness x%.3g", s->residual, s->stiffnessScale);
+            ImGui::Text("%lld steps, %.2f s", static_cast<long long>(s->steps), s->seconds);
+        } else {
+            ImGui::TextDisabled(live ? "waiting for the first shape" : "showing the initial geometry");
+        }
+        const auto& history = app.residualHistory();
+        if (!history.empty())
+            ImGui::PlotLines("##residual", history.data(), int(history.size()), 0, "log10 residual", -7.0f, 1.0f,
+                             ImVec2(kRightWidth - 20, 60));
+        if (ImGui::Button("Refine")) app.refine();
+        ImGui::SameLine();
+        ImGui::TextDisabled("%.0f fps", app.framesPerSecond());
+        if (app.colourBy() == ColourBy::Tension) ImGui::Text("tension colours: 0 .. %.4g N", app.maxTension());
+    }
+    ImGui::End();
+}
+
+void Panels::drawStatus(App& app) {
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    const float height = ImGui::GetFrameHeight() + 8;
+    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x, vp->Pos.y + vp->Size.y - height));
+    ImGui::SetNextWindowSize(ImVec2(vp->Size.x, height));
+    ImGui::SetNextWindowBgAlpha(0.7f);
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoSavedSettings |
+                                   ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoMove;
+    if (ImGui::Begin("##status", nullptr, flags)) {
+        const Interaction& ui = app.interaction();
+        const std::string mode(modeName(ui.mode()));
+        ImGui::Text("[%s]", mode.c_str());
+        ImGui::SameLine();
+        const bool error = !app.notice().empty() ? app.noticeIsError() : ui.messageIsError();
+        const std::string& text = !app.notice().empty() ? app.notice() : ui.message();
+        if (error) ImGui::TextColored(ImVec4(1, 0.45f, 0.35f, 1), "%s", text.c_str());
+        else ImGui::TextDisabled("%s", text.empty() ? modeHint(ui.mode()) : text.c_str());
+    }
+    ImGui::End();
+}
+
+void Panels::drawDialogs(App& app) {
+    if (app.restorePending()) ImGui::OpenPopup("Restore session?");
+    if (ImGui::BeginPopupModal("Restore session?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+        ImGui::Text("The last session's work is in\n%s", app.sessionJournal().string().c_str());
+        if (ImGui::Button("Restore it")) {
+            app.answerRestore(true);
+            ImGui::CloseCurrentPopup();
+        }
+        ImGui::SameLine();
+        if (ImGui::Button("Start afresh")) {
+            app.answerRestore(false);
+            ImGui::CloseCurrentPopup();
+        }
+        ImGui::EndPopup();
+    }
+
+    if (openUnsavedPopup_) ImGui::OpenPopup("Unsaved changes");
+    openUnsavedPopup_ = false;
+    if (ImGui::BeginPopupModal("Unsaved changes", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+        ImGui::Text("This sculpture has changes that are not saved.");
+        const FileAction then = askUnsaved_.value_or(FileAction::New);
+        if (ImGui::Button("Save")) {
+            ImGui::CloseCurrentPopup();
+            askUnsaved_.reset();
+            if (app.currentPath() && app.saveJournal(*app.currentPath())) perform(then, app);
+            else perform(FileAction::SaveAs, app);
+        }
+        ImGui::SameLine();
+        if (ImGui::Button("Discard")) {
+            ImGui::CloseCurrentPopup();
+            askUnsaved_.reset();
+            perform(then, app);
+        }
+        ImGui::SameLine();
+        if (ImGui::Button("Cancel")) {
+            ImGui::CloseCurrentPopup();
+            askUnsaved_.reset();
+        }
+        ImGui::EndPopup();
+    }
+
+    if (openPathPopup_) ImGui::OpenPopup("File");
+    openPathPopup_ = false;
+    if (ImGui::BeginPopupModal("File", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+        const FileAction action = askPath_.value_or(FileAction::Open);
+        ImGui::Text("%s", actionTitle(action));
+        if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
+        ImGui::SetNextItemWidth(460);
+        const bool enter = ImGui::InputText("##path", &path_, ImGuiInputTextFlags_EnterReturnsTrue);
+        if ((ImGui::Button("OK") || enter) && !path_.empty()) {
+            ImGui::CloseCurrentPopup();
+            askPath_.reset();
+            performWithPath(action, app, path_);
+        }
+        ImGui::SameLine();
+        if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) {
+            ImGui::CloseCurrentPopup();
+            askPath_.reset();
+        }
+        ImGui::EndPopup();
+    }
+}
+
+} // namespace netsculpt::studio

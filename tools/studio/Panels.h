@@ -1,0 +1,51 @@
+#pragma once
+// The studio's Dear ImGui panels: menu, mode toolbar, the piece under the mouse or selected (every
+// field editable by typing, through commands), rails, the report summary, the solver's status,
+// the status line, and the modal questions (file paths, unsaved changes, restoring a session).
+
+#include "model/Ids.h"
+
+#include <optional>
+#include <string>
+
+namespace netsculpt::studio {
+
+class App;
+
+enum class FileAction { New, Open, Save, SaveAs, ImportRails, Export, RunScript, Screenshot, Quit };
+
+class Panels {
+  public:
+    /// Builds this frame's panels (between ImGui::NewFrame and ImGui::Render).
+    void draw(App& app);
+    /// Starts a file action (from the menu or a shortcut): asks about unsaved changes first where
+    /// the action would drop them, then for a path where it needs one.
+    void request(FileAction action, App& app);
+
+    static constexpr float kLeftWidth = 300;  ///< px, the inspector on the left
+    static constexpr float kRightWidth = 270; ///< px, the solver panel on the right
+
+  private:
+    void drawMenu(App& app);
+    void drawToolbar(App& app);
+    void drawInspector(App& app);
+    void drawPiece(App& app, PieceId id);
+    void drawRails(App& app);
+    void drawReport(App& app);
+    void drawSolver(App& app);
+    void drawStatus(App& app);
+    void drawDialogs(App& app);
+    void perform(FileAction action, App& app);
+    void performWithPath(FileAction action, App& app, const std::string& path);
+
+    std::optional<FileAction> askPath_;    ///< the path dialog is open for this action
+    std::optional<FileAction> askUnsaved_; ///< the unsaved-changes question is open for this action
+    bool openPathPopup_ = false, openUnsavedPopup_ = false;
+    std::string path_;
+    PieceId colourPiece_;
+    float colour_[3] = {0, 0, 0};
+    bool colourPending_ = false;
+    float menuHeight_ = 0;
+};
+
+} // namespace netsculpt::studio

@@ -1,0 +1,37 @@
+#pragma once
+// netsculpt-studio's command line.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace netsculpt::studio {
+
+struct StudioOptions {
+    std::optional<std::filesystem::path> script;     ///< --script FILE.lua: build the sculpture with a script
+    std::optional<std::filesystem::path> open;       ///< --open JOURNAL: start from a saved design
+    bool demo = false;                               ///< --demo: start from the built-in demo sculpture
+    int demoKnots = 0;                               ///< --demo-knots N: a one-tube demo of about N knots
+    std::optional<std::filesystem::path> play;       ///< --play EVENTS: replay recorded window events
+    std::optional<std::filesystem::path> screenshot; ///< --screenshot out.png after the last frame
+    int exitAfterFrames = -1;                        ///< --exit-after-frames N; -1 = run until closed
+    std::optional<std::filesystem::path> journal;    ///< --journal PATH; default: the session journal
+    int width = 1280, height = 800;                  ///< --size WxH, px
+    bool relax = true;                               ///< --no-relax: show the initial geometry only
+    double settleSeconds = 0;                        ///< --settle S: before the screenshot, wait for the relaxation
+    int samples = 4;                                 ///< --samples N: multisample anti-aliasing (0 = off)
+    bool vsync = true;                               ///< --no-vsync (implied by --play)
+    std::optional<std::string> printHandles;         ///< --print-handles MODE: pixel positions after frame 1
+    std::string colourBy = "piece";                  ///< --colour piece|tension
+};
+
+/// The session journal when --journal is not given: $XDG_DATA_HOME/netsculpt/session.netj, or
+/// ~/.local/share/netsculpt/session.netj.
+std::filesystem::path defaultSessionJournal();
+
+/// Parses argv. Throws UserError naming the bad argument and the usage.
+StudioOptions parseStudioOptions(const std::vector<std::string>& args);
+std::string studioUsage();
+
+} // namespace netsculpt::studio
