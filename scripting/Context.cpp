@@ -43,10 +43,12 @@ void installContext(lua_State* L, ScriptContext* context) {
 }
 
 std::filesystem::path nextJournalPath(ScriptContext& context) {
-    if (context.journalStem.empty()) return {};
+    if (context.journalStem.empty())
+        return {};
     const int n = ++context.documentsMade;
     std::string name = context.journalStem;
-    if (n > 1) name.append(".").append(std::to_string(n));
+    if (n > 1)
+        name.append(".").append(std::to_string(n));
     return context.outputDir / name.append(".netj");
 }
 

@@ -21,9 +21,9 @@ namespace netsculpt::lua {
 enum class Stop { None, Memory, Instructions };
 
 struct ScriptContext {
-    bool sandboxed = false;              ///< the sandbox rules of Sandbox.h apply
-    std::filesystem::path scriptDir;     ///< absolute; relative reads resolve here
-    std::filesystem::path outputDir;     ///< absolute; relative writes resolve here
+    bool sandboxed = false;          ///< the sandbox rules of Sandbox.h apply
+    std::filesystem::path scriptDir; ///< absolute; relative reads resolve here
+    std::filesystem::path outputDir; ///< absolute; relative writes resolve here
 
     /// Documents made by ns.new / ns.open are journaled to outputDir/<journalStem>.netj (the
     /// second one to <journalStem>.2.netj, ...). Empty = not journaled.

@@ -17,7 +17,9 @@ class TemporaryFolder {
   public:
     TemporaryFolder() {
         std::string pattern = (fs::temp_directory_path() / "netsculpt-open-XXXXXX").string();
-        if (mkdtemp(pattern.data()) == nullptr) throw UserError("cannot create a temporary folder in " + fs::temp_directory_path().string());
+        if (mkdtemp(pattern.data()) == nullptr)
+            throw UserError("cannot create a temporary folder in " +
+                            fs::temp_directory_path().string());
         path_ = pattern;
     }
     ~TemporaryFolder() {
@@ -33,7 +35,8 @@ class TemporaryFolder {
 };
 
 std::string replaceAll(std::string text, const std::string& from, const std::string& to) {
-    for (std::size_t at = text.find(from); !from.empty() && at != std::string::npos; at = text.find(from, at + to.size()))
+    for (std::size_t at = text.find(from); !from.empty() && at != std::string::npos;
+         at = text.find(from, at + to.size()))
         text.replace(at, from.size(), to);
     return text;
 }
@@ -42,18 +45,22 @@ std::string replaceAll(std::string text, const std::string& from, const std::str
 
 Document openReadOnly(const fs::path& path, std::vector<std::string>* warnings) {
     std::error_code error;
-    if (!fs::is_regular_file(path, error)) throw UserError("cannot open " + path.string() + ": no such file");
+    if (!fs::is_regular_file(path, error))
+        throw UserError("cannot open " + path.string() + ": no such file");
     const TemporaryFolder folder;
     const fs::path copy = folder.path() / path.filename();
     fs::copy_file(path, copy, error);
-    if (error) throw UserError("cannot read " + path.string() + ": " + error.message());
+    if (error)
+        throw UserError("cannot read " + path.string() + ": " + error.message());
     std::vector<std::string> found;
     try {
         Document doc = Document::load(copy, &found);
         for (const std::string& w : found) {
             const std::string warning = replaceAll(w, copy.string(), path.string());
-            if (warnings) warnings->push_back(warning);
-            else std::cerr << "netsculpt: warning: " << warning << "\n";
+            if (warnings)
+                warnings->push_back(warning);
+            else
+                std::cerr << "netsculpt: warning: " << warning << "\n";
         }
         return doc;
     } catch (const UserError& e) {

@@ -14,6 +14,7 @@ namespace netsculpt::lua {
 
 /// A journal (replayed) or a snapshot, by content; the file is never written. The document is
 /// attached to no journal the caller can see (attachJournal to keep one).
-Document openReadOnly(const std::filesystem::path& path, std::vector<std::string>* warnings = nullptr);
+Document openReadOnly(const std::filesystem::path& path,
+                      std::vector<std::string>* warnings = nullptr);
 
 } // namespace netsculpt::lua

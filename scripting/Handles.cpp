@@ -26,7 +26,9 @@ DocumentBox* toDocument(lua_State* L, int index) {
 }
 
 /// The kind a handle metatable name stands for, for messages.
-const char* kindOf(const char* type) { return type == kPieceType ? "piece" : "rail"; }
+const char* kindOf(const char* type) {
+    return type == kPieceType ? "piece" : "rail";
+}
 
 int documentGc(lua_State* L) {
     auto* box = static_cast<DocumentBox*>(lua_touserdata(L, 1));
@@ -44,7 +46,8 @@ int documentToString(lua_State* L) {
         return 1;
     }
     const Sculpture& s = box->doc.sculpture();
-    lua_pushfstring(L, "netsculpt sculpture (%d rails, %d pieces)", int(s.rails.size()), int(s.pieces.size()));
+    lua_pushfstring(L, "netsculpt sculpture (%d rails, %d pieces)", int(s.rails.size()),
+                    int(s.pieces.size()));
     return 1;
 }
 
@@ -107,10 +110,13 @@ void pushHandle(lua_State* L, int docIndex, const char* type, int cache, std::ui
 
 /// The id of the handle at `index` after checking its type, its document and its liveness.
 /// `arg` names the argument in messages; null for the handle of a method call (p:info()).
-std::uint32_t checkHandle(const Call& call, int index, const char* arg, int docIndex, const char* type) {
+std::uint32_t checkHandle(const Call& call, int index, const char* arg, int docIndex,
+                          const char* type) {
     lua_State* L = call.L;
     const auto* box = static_cast<const HandleBox*>(luaL_testudata(L, index, type));
-    if (box == nullptr) call.bad(arg != nullptr ? arg : kindOf(type), index, std::string("a ") + kindOf(type) + " handle");
+    if (box == nullptr)
+        call.bad(arg != nullptr ? arg : kindOf(type), index,
+                 std::string("a ") + kindOf(type) + " handle");
     lua_getiuservalue(L, index, 1);
     const bool sameDocument = lua_rawequal(L, -1, docIndex) != 0;
     lua_pop(L, 1);
@@ -122,9 +128,11 @@ std::uint32_t checkHandle(const Call& call, int index, const char* arg, int docI
     const bool alive = piece ? s.hasPiece(PieceId(box->id)) : s.hasRail(RailId(box->id));
     if (!alive) {
         const std::uint32_t next = piece ? s.nextPieceId : s.nextRailId;
-        const std::string what = arg == nullptr ? std::string() : std::string("argument '") + arg + "': ";
+        const std::string what =
+            arg == nullptr ? std::string() : std::string("argument '") + arg + "': ";
         call.fail(what + describeHandle(L, index) +
-                  (box->id < next ? " was removed" : " no longer exists (the call that made it was undone)"));
+                  (box->id < next ? " was removed"
+                                  : " no longer exists (the call that made it was undone)"));
     }
     return box->id;
 }
@@ -132,11 +140,12 @@ std::uint32_t checkHandle(const Call& call, int index, const char* arg, int docI
 std::uint32_t handleSelf(const Call& call, const char* type, int& docIndex) {
     lua_State* L = call.L;
     if (luaL_testudata(L, 1, type) == nullptr)
-        call.fail(std::string("call it as ") + kindOf(type) + ":" + call.name + "() (with a colon), got " +
-                  describe(L, 1) + " as the " + kindOf(type));
+        call.fail(std::string("call it as ") + kindOf(type) + ":" + call.name +
+                  "() (with a colon), got " + describe(L, 1) + " as the " + kindOf(type));
     lua_getiuservalue(L, 1, 1);
     docIndex = lua_gettop(L);
-    if (!toDocument(L, docIndex)->alive) call.fail("the sculpture of this handle was closed");
+    if (!toDocument(L, docIndex)->alive)
+        call.fail("the sculpture of this handle was closed");
     return checkHandle(call, 1, nullptr, docIndex, type);
 }
 
@@ -164,12 +173,17 @@ Document& checkDocument(const Call& call, int index) {
     if (box == nullptr)
         call.fail(std::string("call it as doc:") + call.name + "(...) (with a colon), got " +
                   describe(call.L, index) + " as the sculpture");
-    if (!box->alive) call.fail("the sculpture was closed");
+    if (!box->alive)
+        call.fail("the sculpture was closed");
     return box->doc;
 }
 
-void pushPiece(lua_State* L, int docIndex, PieceId id) { pushHandle(L, docIndex, kPieceType, kPieceCache, id.value); }
-void pushRail(lua_State* L, int docIndex, RailId id) { pushHandle(L, docIndex, kRailType, kRailCache, id.value); }
+void pushPiece(lua_State* L, int docIndex, PieceId id) {
+    pushHandle(L, docIndex, kPieceType, kPieceCache, id.value);
+}
+void pushRail(lua_State* L, int docIndex, RailId id) {
+    pushHandle(L, docIndex, kRailType, kRailCache, id.value);
+}
 
 PieceId checkPiece(const Call& call, int index, const char* arg, int docIndex) {
     return PieceId(checkHandle(call, index, arg, docIndex, kPieceType));
@@ -181,7 +195,8 @@ RailId checkRail(const Call& call, int index, const char* arg, int docIndex) {
 
 PieceId pieceArg(const TableArgs& args, const char* key, int docIndex) {
     const int at = args.push(key);
-    if (lua_isnil(args.call().L, at)) args.missing(key, "a piece handle");
+    if (lua_isnil(args.call().L, at))
+        args.missing(key, "a piece handle");
     const PieceId id = checkPiece(args.call(), at, key, docIndex);
     args.pop();
     return id;
@@ -189,7 +204,8 @@ PieceId pieceArg(const TableArgs& args, const char* key, int docIndex) {
 
 RailId railArg(const TableArgs& args, const char* key, int docIndex) {
     const int at = args.push(key);
-    if (lua_isnil(args.call().L, at)) args.missing(key, "a rail handle");
+    if (lua_isnil(args.call().L, at))
+        args.missing(key, "a rail handle");
     const RailId id = checkRail(args.call(), at, key, docIndex);
     args.pop();
     return id;
@@ -212,7 +228,8 @@ std::string describeHandle(lua_State* L, int index) {
         return "piece " + std::to_string(box->id);
     if (const auto* box = static_cast<const HandleBox*>(luaL_testudata(L, index, kRailType)))
         return "rail " + std::to_string(box->id);
-    if (luaL_testudata(L, index, kDocumentType) != nullptr) return "a sculpture";
+    if (luaL_testudata(L, index, kDocumentType) != nullptr)
+        return "a sculpture";
     return "";
 }
 

@@ -15,12 +15,15 @@ void* limitedAlloc(void* ud, void* ptr, std::size_t osize, std::size_t nsize) no
         return nullptr;
     }
     const bool grows = nsize > old;
-    if (grows && limit->limit != 0 && limit->exempt == 0 && limit->used - old + nsize > limit->limit)
+    if (grows && limit->limit != 0 && limit->exempt == 0 &&
+        limit->used - old + nsize > limit->limit)
         return nullptr; // Lua collects garbage, retries, then raises a memory error
     void* block = std::realloc(ptr, nsize);
-    if (block == nullptr) return nullptr;
+    if (block == nullptr)
+        return nullptr;
     limit->used = limit->used - old + nsize;
-    if (limit->used > limit->peak) limit->peak = limit->used;
+    if (limit->used > limit->peak)
+        limit->peak = limit->used;
     return block;
 }
 
@@ -30,24 +33,29 @@ MemoryLimit* memoryLimit(lua_State* L) {
 }
 
 BindingExemption::BindingExemption(lua_State* L) : limit_(memoryLimit(L)) {
-    if (limit_ != nullptr) ++limit_->exempt;
+    if (limit_ != nullptr)
+        ++limit_->exempt;
 }
 
 BindingExemption::~BindingExemption() {
-    if (limit_ != nullptr) --limit_->exempt;
+    if (limit_ != nullptr)
+        --limit_->exempt;
 }
 
 std::string instructionBudgetText(std::uint64_t budget) {
     int exponent = 0;
     std::uint64_t rest = budget;
-    while (rest >= 10 && rest % 10 == 0) rest /= 10, ++exponent;
-    if (rest == 1 && exponent >= 3) return "10^" + std::to_string(exponent);
+    while (rest >= 10 && rest % 10 == 0)
+        rest /= 10, ++exponent;
+    if (rest == 1 && exponent >= 3)
+        return "10^" + std::to_string(exponent);
     return std::to_string(budget);
 }
 
 std::string memoryLimitText(std::size_t bytes) {
     constexpr std::size_t kMiB = std::size_t(1) << 20;
-    if (bytes >= kMiB && bytes % kMiB == 0) return std::to_string(bytes / kMiB) + " MiB";
+    if (bytes >= kMiB && bytes % kMiB == 0)
+        return std::to_string(bytes / kMiB) + " MiB";
     return std::to_string(bytes) + " bytes";
 }
 
@@ -63,7 +71,9 @@ namespace {
 
 constexpr std::uint64_t kHookInterval = 1000;
 
-std::uint64_t hookInterval(std::uint64_t budget) { return budget < kHookInterval ? budget : kHookInterval; }
+std::uint64_t hookInterval(std::uint64_t budget) {
+    return budget < kHookInterval ? budget : kHookInterval;
+}
 
 /// Pushes the message of the limit that stopped the script.
 /// Pushes the message of the limit that stopped the script. The push is exempt from the memory
@@ -71,21 +81,26 @@ std::uint64_t hookInterval(std::uint64_t budget) { return budget < kHookInterval
 void pushStopMessage(lua_State* L, const ScriptContext& ctx) {
     char message[128];
     {
-        const std::string text = ctx.stop == Stop::Memory ? memoryExceededMessage(ctx.maxMemory)
-                                                          : instructionsExceededMessage(ctx.maxInstructions);
+        const std::string text = ctx.stop == Stop::Memory
+                                     ? memoryExceededMessage(ctx.maxMemory)
+                                     : instructionsExceededMessage(ctx.maxInstructions);
         std::snprintf(message, sizeof message, "%s", text.c_str());
     }
     MemoryLimit* limit = memoryLimit(L);
-    if (limit != nullptr) ++limit->exempt;
+    if (limit != nullptr)
+        ++limit->exempt;
     lua_pushstring(L, message);
-    if (limit != nullptr) --limit->exempt;
+    if (limit != nullptr)
+        --limit->exempt;
 }
 
 void countHook(lua_State* L, lua_Debug*) {
     ScriptContext& ctx = context(L);
     ctx.instructions += hookInterval(ctx.maxInstructions);
-    if (ctx.stop == Stop::None && ctx.instructions > ctx.maxInstructions) ctx.stop = Stop::Instructions;
-    if (ctx.stop == Stop::None) return;
+    if (ctx.stop == Stop::None && ctx.instructions > ctx.maxInstructions)
+        ctx.stop = Stop::Instructions;
+    if (ctx.stop == Stop::None)
+        return;
     luaL_where(L, 0); // the Lua function being run (a hook has no frame of its own)
     pushStopMessage(L, ctx);
     lua_concat(L, 2);
@@ -98,13 +113,18 @@ void letLimitsThrough(lua_State* L, int status, int errorIndex) {
     const bool memory = status == LUA_ERRMEM ||
                         (lua_type(L, errorIndex) == LUA_TSTRING &&
                          std::strcmp(lua_tostring(L, errorIndex), "not enough memory") == 0);
-    if (memory && ctx.maxMemory != 0 && ctx.stop == Stop::None) ctx.stop = Stop::Memory;
-    if (ctx.stop == Stop::None) return;
+    if (memory && ctx.maxMemory != 0 && ctx.stop == Stop::None)
+        ctx.stop = Stop::Memory;
+    if (ctx.stop == Stop::None)
+        return;
     // Re-raise the limit's own message: a message handler may have replaced the error object.
-    const bool isLimitMessage = lua_type(L, errorIndex) == LUA_TSTRING &&
-                                std::strstr(lua_tostring(L, errorIndex), "script exceeded") != nullptr;
-    if (isLimitMessage) lua_pushvalue(L, errorIndex);
-    else pushStopMessage(L, ctx);
+    const bool isLimitMessage =
+        lua_type(L, errorIndex) == LUA_TSTRING &&
+        std::strstr(lua_tostring(L, errorIndex), "script exceeded") != nullptr;
+    if (isLimitMessage)
+        lua_pushvalue(L, errorIndex);
+    else
+        pushStopMessage(L, ctx);
     lua_error(L);
 }
 
@@ -143,7 +163,8 @@ int checkedResume(lua_State* L) {
     lua_pushvalue(L, lua_upvalueindex(1));
     lua_insert(L, 1);
     lua_call(L, n, LUA_MULTRET);
-    if (lua_gettop(L) >= 2 && !lua_toboolean(L, 1)) letLimitsThrough(L, LUA_ERRRUN, 2);
+    if (lua_gettop(L) >= 2 && !lua_toboolean(L, 1))
+        letLimitsThrough(L, LUA_ERRRUN, 2);
     return lua_gettop(L);
 }
 

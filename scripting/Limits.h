@@ -24,7 +24,7 @@ struct MemoryLimit {
     std::size_t limit = 0; ///< bytes; 0 = none
     std::size_t used = 0;  ///< bytes the state holds now
     std::size_t peak = 0;
-    int exempt = 0;        ///< > 0 while a bound function runs
+    int exempt = 0; ///< > 0 while a bound function runs
 };
 
 /// A lua_Alloc that enforces MemoryLimit (ud).

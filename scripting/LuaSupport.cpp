@@ -42,7 +42,9 @@ std::string currentErrorMessage(const char* name) {
     }
 }
 
-void Call::fail(const std::string& message) const { throw ArgumentError(std::string(name) + ": " + message); }
+void Call::fail(const std::string& message) const {
+    throw ArgumentError(std::string(name) + ": " + message);
+}
 
 void Call::bad(const char* arg, int index, const std::string& expected) const {
     fail(std::string("argument '") + arg + "' must be " + expected + ", got " + describe(L, index));
@@ -51,23 +53,29 @@ void Call::bad(const char* arg, int index, const std::string& expected) const {
 std::string describe(lua_State* L, int index) {
     switch (lua_type(L, index)) {
     case LUA_TNONE:
-    case LUA_TNIL: return "nil";
-    case LUA_TBOOLEAN: return lua_toboolean(L, index) ? "true" : "false";
+    case LUA_TNIL:
+        return "nil";
+    case LUA_TBOOLEAN:
+        return lua_toboolean(L, index) ? "true" : "false";
     case LUA_TNUMBER:
-        if (lua_isinteger(L, index)) return std::to_string(lua_tointeger(L, index));
+        if (lua_isinteger(L, index))
+            return std::to_string(lua_tointeger(L, index));
         return formatNumber(lua_tonumber(L, index));
     case LUA_TSTRING: {
         std::size_t size = 0;
         const char* text = lua_tolstring(L, index, &size);
         return quoted(std::string_view(text, size));
     }
-    case LUA_TTABLE: return "a table";
-    case LUA_TFUNCTION: return "a function";
+    case LUA_TTABLE:
+        return "a table";
+    case LUA_TFUNCTION:
+        return "a function";
     case LUA_TUSERDATA: {
         const std::string handle = describeHandle(L, index);
         return handle.empty() ? "a userdata" : handle;
     }
-    default: return std::string("a ") + lua_typename(L, lua_type(L, index));
+    default:
+        return std::string("a ") + lua_typename(L, lua_type(L, index));
     }
 }
 
@@ -87,7 +95,8 @@ int invoke(lua_State* L, const char* name, Body body) {
             failed = true;
         }
     }
-    if (failed) return lua_error(L); // outside the handler and every C++ frame with a destructor
+    if (failed)
+        return lua_error(L); // outside the handler and every C++ frame with a destructor
     return results;
 }
 
@@ -99,21 +108,25 @@ void setFunctions(lua_State* L, std::initializer_list<Function> functions) {
     }
 }
 
-std::int64_t checkWhole(const Call& call, int index, const char* arg, std::int64_t min, std::int64_t max) {
+std::int64_t checkWhole(const Call& call, int index, const char* arg, std::int64_t min,
+                        std::int64_t max) {
     const std::string range = max == INT32_MAX || max == INT64_MAX
                                   ? ">= " + std::to_string(min)
                                   : "from " + std::to_string(min) + " to " + std::to_string(max);
     const std::string expected = "a whole number " + range;
-    if (lua_type(call.L, index) != LUA_TNUMBER) call.bad(arg, index, expected);
+    if (lua_type(call.L, index) != LUA_TNUMBER)
+        call.bad(arg, index, expected);
     std::int64_t value = 0;
     if (lua_isinteger(call.L, index)) {
         value = lua_tointeger(call.L, index);
     } else {
         const double d = lua_tonumber(call.L, index);
-        if (!(d == std::floor(d)) || !(std::fabs(d) < 9e15)) call.bad(arg, index, expected);
+        if (!(d == std::floor(d)) || !(std::fabs(d) < 9e15))
+            call.bad(arg, index, expected);
         value = std::int64_t(d);
     }
-    if (value < min || value > max) call.bad(arg, index, expected);
+    if (value < min || value > max)
+        call.bad(arg, index, expected);
     return value;
 }
 
@@ -124,7 +137,8 @@ double checkFinite(const Call& call, int index, const char* arg) {
 }
 
 std::string checkString(const Call& call, int index, const char* arg) {
-    if (lua_type(call.L, index) != LUA_TSTRING) call.bad(arg, index, "a string");
+    if (lua_type(call.L, index) != LUA_TSTRING)
+        call.bad(arg, index, "a string");
     std::size_t size = 0;
     const char* text = lua_tolstring(call.L, index, &size);
     return std::string(text, size);
@@ -133,18 +147,22 @@ std::string checkString(const Call& call, int index, const char* arg) {
 std::string listOf(const std::vector<std::string>& names) {
     std::string out;
     for (std::size_t i = 0; i < names.size(); ++i) {
-        if (i > 0) out += i + 1 == names.size() ? " or " : ", ";
+        if (i > 0)
+            out += i + 1 == names.size() ? " or " : ", ";
         out += "\"" + names[i] + "\"";
     }
     return out;
 }
 
-std::string checkChoice(const Call& call, int index, const char* arg, const std::vector<std::string>& allowed) {
+std::string checkChoice(const Call& call, int index, const char* arg,
+                        const std::vector<std::string>& allowed) {
     const std::string expected = "one of " + listOf(allowed);
-    if (lua_type(call.L, index) != LUA_TSTRING) call.bad(arg, index, expected);
+    if (lua_type(call.L, index) != LUA_TSTRING)
+        call.bad(arg, index, expected);
     const std::string value = lua_tostring(call.L, index);
     for (const std::string& a : allowed)
-        if (a == value) return value;
+        if (a == value)
+            return value;
     call.bad(arg, index, expected);
 }
 
@@ -157,7 +175,8 @@ Vec3 checkTriple(const Call& call, int index, const char* arg, const char* const
                  const char* expected) {
     lua_State* L = call.L;
     index = lua_absindex(L, index);
-    if (lua_type(L, index) != LUA_TTABLE) call.bad(arg, index, expected);
+    if (lua_type(L, index) != LUA_TTABLE)
+        call.bad(arg, index, expected);
     const std::size_t length = lua_rawlen(L, index);
     const bool named = length == 0;
     if (!named && length != 3)
@@ -165,15 +184,17 @@ Vec3 checkTriple(const Call& call, int index, const char* arg, const char* const
                   std::to_string(length) + " values");
     double xyz[3] = {0, 0, 0};
     for (int i = 0; i < 3; ++i) {
-        if (named) lua_pushstring(L, kNames[i]), lua_rawget(L, index);
-        else lua_rawgeti(L, index, i + 1);
+        if (named)
+            lua_pushstring(L, kNames[i]), lua_rawget(L, index);
+        else
+            lua_rawgeti(L, index, i + 1);
         const bool ok = lua_type(L, -1) == LUA_TNUMBER && std::isfinite(lua_tonumber(L, -1));
         xyz[i] = lua_tonumber(L, -1);
         if (!ok) {
             const std::string got = describe(L, -1);
             lua_pop(L, 1);
-            call.fail(std::string("argument '") + arg + "' must be " + expected + ", got " + got + " as " +
-                      kNames[i]);
+            call.fail(std::string("argument '") + arg + "' must be " + expected + ", got " + got +
+                      " as " + kNames[i]);
         }
         lua_pop(L, 1);
     }

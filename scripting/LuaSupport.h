@@ -69,13 +69,15 @@ void setFunctions(lua_State* L, std::initializer_list<Function> functions);
 // ---- reading values (raw access; throw ArgumentError) -------------------------------------
 
 /// A number that is a whole number in [min, max] (3 and 3.0 both count).
-std::int64_t checkWhole(const Call& call, int index, const char* arg, std::int64_t min, std::int64_t max);
+std::int64_t checkWhole(const Call& call, int index, const char* arg, std::int64_t min,
+                        std::int64_t max);
 /// A finite number.
 double checkFinite(const Call& call, int index, const char* arg);
 /// A string.
 std::string checkString(const Call& call, int index, const char* arg);
 /// A string from `allowed`; a bad one lists the allowed values.
-std::string checkChoice(const Call& call, int index, const char* arg, const std::vector<std::string>& allowed);
+std::string checkChoice(const Call& call, int index, const char* arg,
+                        const std::vector<std::string>& allowed);
 /// A point {x, y, z} (or {x=, y=, z=}) of finite numbers.
 Vec3 checkVec3(const Call& call, int index, const char* arg);
 /// Three finite numbers {a, b, c} or {n0=a, n1=b, n2=c} for names n: a colour {r, g, b}, ...

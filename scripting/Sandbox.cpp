@@ -24,50 +24,62 @@ fs::path canonicalOrSelf(const fs::path& path) {
 bool isInside(const fs::path& path, const fs::path& folder) {
     auto p = path.begin();
     for (auto f = folder.begin(); f != folder.end(); ++f, ++p) {
-        if (f->empty()) continue; // a trailing separator
-        if (p == path.end() || *p != *f) return false;
+        if (f->empty())
+            continue; // a trailing separator
+        if (p == path.end() || *p != *f)
+            return false;
     }
     return true;
 }
 
-std::string quotedPath(const fs::path& path) { return "\"" + path.string() + "\""; }
+std::string quotedPath(const fs::path& path) {
+    return "\"" + path.string() + "\"";
+}
 
 } // namespace
 
 fs::path resolveReadPath(const ScriptContext& context, const std::string& text, const char* call) {
-    if (text.empty()) throw UserError(std::string(call) + ": the file name is empty");
+    if (text.empty())
+        throw UserError(std::string(call) + ": the file name is empty");
     const fs::path given(text);
     const fs::path full = given.is_absolute() ? given : context.scriptDir / given;
-    if (!context.sandboxed) return full;
+    if (!context.sandboxed)
+        return full;
     const fs::path resolved = canonicalOrSelf(full);
-    if (isInside(resolved, canonicalOrSelf(context.scriptDir)) || isInside(resolved, canonicalOrSelf(context.outputDir)))
+    if (isInside(resolved, canonicalOrSelf(context.scriptDir)) ||
+        isInside(resolved, canonicalOrSelf(context.outputDir)))
         return resolved;
-    throw UserError(std::string(call) + ": reading \"" + text + "\" is not allowed: a script reads files only in its own folder (" +
-                    context.scriptDir.string() + ") and in the output folder (" + context.outputDir.string() + "); " +
-                    kUnsafeHint);
+    throw UserError(std::string(call) + ": reading \"" + text +
+                    "\" is not allowed: a script reads files only in its own folder (" +
+                    context.scriptDir.string() + ") and in the output folder (" +
+                    context.outputDir.string() + "); " + kUnsafeHint);
 }
 
 fs::path resolveWritePath(const ScriptContext& context, const std::string& text, const char* call) {
-    if (text.empty()) throw UserError(std::string(call) + ": the file name is empty");
+    if (text.empty())
+        throw UserError(std::string(call) + ": the file name is empty");
     const fs::path given(text);
     if (given.is_absolute() && context.sandboxed)
         throw UserError(std::string(call) + ": " + quotedPath(given) +
                         " is an absolute path; a script writes only inside the output folder (" +
-                        context.outputDir.string() + "): give a path relative to it, or " + kUnsafeHint);
-    const fs::path full = given.is_absolute() ? given : (context.outputDir / given).lexically_normal();
+                        context.outputDir.string() + "): give a path relative to it, or " +
+                        kUnsafeHint);
+    const fs::path full =
+        given.is_absolute() ? given : (context.outputDir / given).lexically_normal();
     if (context.sandboxed) {
         const fs::path out = canonicalOrSelf(context.outputDir);
         const fs::path resolved = canonicalOrSelf(full);
         if (resolved == out || !isInside(resolved, out))
-            throw UserError(std::string(call) + ": " + quotedPath(given) + " is outside the output folder (" +
-                            context.outputDir.string() + "); a script writes only inside it; " + kUnsafeHint);
+            throw UserError(std::string(call) + ": " + quotedPath(given) +
+                            " is outside the output folder (" + context.outputDir.string() +
+                            "); a script writes only inside it; " + kUnsafeHint);
     }
     if (full.has_parent_path()) {
         std::error_code error;
         fs::create_directories(full.parent_path(), error);
         if (error)
-            throw UserError(std::string(call) + ": cannot create the folder " + quotedPath(full.parent_path()) +
-                            ": " + error.message());
+            throw UserError(std::string(call) + ": cannot create the folder " +
+                            quotedPath(full.parent_path()) + ": " + error.message());
     }
     return full;
 }
@@ -101,7 +113,8 @@ void refuseField(lua_State* L, const char* table, const char* field) {
 void replacePathArgument(const Call& call, int index, bool write) {
     const std::string given = checkString(call, index, "filename");
     const ScriptContext& ctx = context(call.L);
-    const fs::path path = write ? resolveWritePath(ctx, given, call.name) : resolveReadPath(ctx, given, call.name);
+    const fs::path path =
+        write ? resolveWritePath(ctx, given, call.name) : resolveReadPath(ctx, given, call.name);
     lua_pushstring(call.L, path.c_str());
     lua_replace(call.L, index);
 }
@@ -111,7 +124,8 @@ int checkOpen(Call& call) {
         const std::string mode = checkString(call, 2, "mode");
         if (mode != "r" && mode != "rb")
             call.fail("writing files is not allowed in a script (mode \"" + mode +
-                      "\"): write through doc:save, doc:export or doc:write_report into the output folder, or " +
+                      "\"): write through doc:save, doc:export or doc:write_report into the output "
+                      "folder, or " +
                       kUnsafeHint);
     }
     replacePathArgument(call, 1, false);
@@ -119,14 +133,16 @@ int checkOpen(Call& call) {
 }
 
 int checkOptionalRead(Call& call) {
-    if (lua_type(call.L, 1) == LUA_TSTRING) replacePathArgument(call, 1, false);
+    if (lua_type(call.L, 1) == LUA_TSTRING)
+        replacePathArgument(call, 1, false);
     return 0;
 }
 
 int checkOutput(Call& call) {
     if (lua_type(call.L, 1) == LUA_TSTRING)
         call.fail("writing files is not allowed in a script: write through doc:save, doc:export or "
-                  "doc:write_report into the output folder, or " + std::string(kUnsafeHint));
+                  "doc:write_report into the output folder, or " +
+                  std::string(kUnsafeHint));
     return 0;
 }
 
@@ -138,7 +154,8 @@ void textOnly(const Call& call, int modeIndex) {
         if (mode.find('t') == std::string::npos)
             call.fail("binary chunks are not allowed in a script (mode \"" + mode + "\")");
     }
-    if (lua_gettop(L) < modeIndex) lua_settop(L, modeIndex);
+    if (lua_gettop(L) < modeIndex)
+        lua_settop(L, modeIndex);
     lua_pushliteral(L, "t");
     lua_replace(L, modeIndex);
 }
@@ -149,7 +166,8 @@ int checkLoad(Call& call) {
 }
 
 int checkLoadfile(Call& call) {
-    if (!lua_isnoneornil(call.L, 1)) replacePathArgument(call, 1, false);
+    if (!lua_isnoneornil(call.L, 1))
+        replacePathArgument(call, 1, false);
     textOnly(call, 2);
     return 0;
 }
@@ -164,8 +182,10 @@ template <Body Check> int checkedOriginal(lua_State* L) {
 
 void replaceField(lua_State* L, const char* table, const char* field, lua_CFunction wrapper) {
     const bool global = table == nullptr;
-    if (global) lua_pushglobaltable(L);
-    else lua_getglobal(L, table);
+    if (global)
+        lua_pushglobaltable(L);
+    else
+        lua_getglobal(L, table);
     lua_pushstring(L, global ? field : (std::string(table) + "." + field).c_str());
     lua_getfield(L, -2, field);
     lua_pushcclosure(L, wrapper, 2);
@@ -205,18 +225,20 @@ int searchModule(Call& call) {
         for (const std::string& file : {relative + ".lua", relative + "/init.lua"}) {
             const fs::path path = folder / file;
             std::error_code error;
-            if (!isInside(canonicalOrSelf(path), canonicalOrSelf(folder)) || !fs::is_regular_file(path, error)) {
+            if (!isInside(canonicalOrSelf(path), canonicalOrSelf(folder)) ||
+                !fs::is_regular_file(path, error)) {
                 tried += (tried.empty() ? "no file '" : "\n\tno file '") + path.string() + "'";
                 continue;
             }
             if (luaL_loadfilex(L, path.c_str(), "t") != LUA_OK)
-                call.fail("error loading module '" + name + "' from file '" + path.string() + "':\n\t" +
-                          lua_tostring(L, -1));
+                call.fail("error loading module '" + name + "' from file '" + path.string() +
+                          "':\n\t" + lua_tostring(L, -1));
             lua_pushstring(L, path.c_str());
             return 2;
         }
     tried += "\n\t(a script loads Lua modules from its own folder and the output folder only; "
-             "C modules other than netsculpt are not allowed; " + std::string(kUnsafeHint) + ")";
+             "C modules other than netsculpt are not allowed; " +
+             std::string(kUnsafeHint) + ")";
     lua_pushstring(L, tried.c_str());
     return 1;
 }
@@ -239,11 +261,12 @@ void installSearchers(lua_State* L) {
 }
 
 void restrictDebug(lua_State* L) {
-    static const char* const kRefused[] = {"debug", "gethook", "getlocal", "getmetatable", "getregistry",
-                                           "getupvalue", "getuservalue", "sethook", "setlocal", "setmetatable",
-                                           "setupvalue", "setuservalue", "upvalueid", "upvaluejoin",
-                                           "setcstacklimit"};
-    for (const char* field : kRefused) refuseField(L, "debug", field);
+    static const char* const kRefused[] = {
+        "debug",      "gethook",      "getlocal",  "getmetatable", "getregistry",
+        "getupvalue", "getuservalue", "sethook",   "setlocal",     "setmetatable",
+        "setupvalue", "setuservalue", "upvalueid", "upvaluejoin",  "setcstacklimit"};
+    for (const char* field : kRefused)
+        refuseField(L, "debug", field);
 }
 
 } // namespace
@@ -251,8 +274,10 @@ void restrictDebug(lua_State* L) {
 void installSandbox(lua_State* L) {
     for (const char* field : {"execute", "exit", "remove", "rename", "tmpname", "setlocale"})
         refuseField(L, "os", field);
-    for (const char* field : {"popen", "tmpfile"}) refuseField(L, "io", field);
-    for (const char* field : {"loadlib", "searchpath"}) refuseField(L, "package", field);
+    for (const char* field : {"popen", "tmpfile"})
+        refuseField(L, "io", field);
+    for (const char* field : {"loadlib", "searchpath"})
+        refuseField(L, "package", field);
     restrictDebug(L);
     replaceField(L, "io", "open", checkedOriginal<checkOpen>);
     replaceField(L, "io", "lines", checkedOriginal<checkOptionalRead>);

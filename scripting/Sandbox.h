@@ -24,10 +24,12 @@ namespace netsculpt::lua {
 
 /// The file a script may read at `path` (as given by the script), for the call `call`.
 /// Throws UserError saying which folders are allowed when the sandbox refuses it.
-std::filesystem::path resolveReadPath(const ScriptContext& context, const std::string& path, const char* call);
+std::filesystem::path resolveReadPath(const ScriptContext& context, const std::string& path,
+                                      const char* call);
 /// The file a script may write at `path`; creates its parent folders inside the output folder.
 /// Throws UserError when the sandbox refuses it (nothing is created then).
-std::filesystem::path resolveWritePath(const ScriptContext& context, const std::string& path, const char* call);
+std::filesystem::path resolveWritePath(const ScriptContext& context, const std::string& path,
+                                       const char* call);
 
 /// Installs the sandbox into a state whose standard libraries are open (context(L).sandboxed).
 void installSandbox(lua_State* L);

@@ -23,14 +23,18 @@ const char* const kTracebackMarker = "\nstack traceback:\n";
 /// The message handler: the error as a string, followed by the traceback.
 int messageHandler(lua_State* L) {
     if (lua_type(L, 1) != LUA_TSTRING) {
-        if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING) lua_replace(L, 1);
-        else lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1)), lua_replace(L, 1);
+        if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING)
+            lua_replace(L, 1);
+        else
+            lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1)),
+                lua_replace(L, 1);
     }
     luaL_traceback(L, L, lua_tostring(L, 1), 1);
     return 1;
 }
 
-void setScriptArguments(lua_State* L, const std::string& script, const std::vector<std::string>& args) {
+void setScriptArguments(lua_State* L, const std::string& script,
+                        const std::vector<std::string>& args) {
     lua_createtable(L, int(args.size()), 1);
     lua_pushstring(L, script.c_str());
     lua_rawseti(L, -2, 0);
@@ -42,7 +46,8 @@ void setScriptArguments(lua_State* L, const std::string& script, const std::vect
 }
 
 /// Opens the libraries and netsculpt, the sandbox and the limits (with no memory limit yet).
-void prepareState(lua_State* L, ScriptContext& ctx, const std::string& script, const ScriptOptions& options) {
+void prepareState(lua_State* L, ScriptContext& ctx, const std::string& script,
+                  const ScriptOptions& options) {
     installContext(L, &ctx);
     luaL_openlibs(L);
     lua_getglobal(L, "package");
@@ -50,12 +55,14 @@ void prepareState(lua_State* L, ScriptContext& ctx, const std::string& script, c
     lua_pushcfunction(L, luaopen_netsculpt);
     lua_setfield(L, -2, "netsculpt");
     lua_pop(L, 2);
-    if (ctx.sandboxed) installSandbox(L);
+    if (ctx.sandboxed)
+        installSandbox(L);
     installLimits(L, ctx);
     setScriptArguments(L, script, options.args);
 }
 
-ScriptContext makeContext(const fs::path& scriptDir, const std::string& journalStem, const ScriptOptions& options) {
+ScriptContext makeContext(const fs::path& scriptDir, const std::string& journalStem,
+                          const ScriptOptions& options) {
     ScriptContext ctx;
     std::error_code error;
     ctx.sandboxed = !options.unsafe;
@@ -78,8 +85,9 @@ void setError(ScriptResult& result, const std::string& text) {
     result.traceback = at == std::string::npos ? std::string() : text.substr(at + 1);
 }
 
-ScriptResult run(const std::string& chunkName, const fs::path& scriptDir, const std::string& journalStem,
-                 const ScriptOptions& options, const std::function<int(lua_State*)>& load) {
+ScriptResult run(const std::string& chunkName, const fs::path& scriptDir,
+                 const std::string& journalStem, const ScriptOptions& options,
+                 const std::function<int(lua_State*)>& load) {
     ScriptResult result;
     ScriptContext ctx = makeContext(scriptDir, journalStem, options);
     MemoryLimit memory; // declared before the state: it outlives lua_close
@@ -94,14 +102,18 @@ ScriptResult run(const std::string& chunkName, const fs::path& scriptDir, const 
     memory.limit = options.maxMemory;
     lua_pushcfunction(L, messageHandler);
     int status = load(L);
-    if (status == LUA_OK) status = lua_pcall(L, 0, 0, 1);
+    if (status == LUA_OK)
+        status = lua_pcall(L, 0, 0, 1);
     if (status != LUA_OK) {
-        if (status == LUA_ERRMEM && ctx.maxMemory != 0) ctx.stop = Stop::Memory;
+        if (status == LUA_ERRMEM && ctx.maxMemory != 0)
+            ctx.stop = Stop::Memory;
         const char* message = lua_tostring(L, -1);
         setError(result, message != nullptr ? message : "(error object is not a string)");
-        if (ctx.stop == Stop::Memory) result.error = memoryExceededMessage(ctx.maxMemory);
+        if (ctx.stop == Stop::Memory)
+            result.error = memoryExceededMessage(ctx.maxMemory);
         const std::string budget = instructionsExceededMessage(ctx.maxInstructions);
-        if (ctx.stop == Stop::Instructions && result.error.find(budget) == std::string::npos) result.error = budget;
+        if (ctx.stop == Stop::Instructions && result.error.find(budget) == std::string::npos)
+            result.error = budget;
     }
     result.stop = ctx.stop;
     result.journals = ctx.journals;
@@ -117,13 +129,12 @@ ScriptResult runScriptFile(const fs::path& script, const ScriptOptions& options)
     const std::string name = script.string();
     const fs::path folder = fs::absolute(script).parent_path();
     const char* mode = options.unsafe ? "bt" : "t";
-    return run(name, folder, script.stem().string(), options, [&](lua_State* L) {
-        return luaL_loadfilex(L, name.c_str(), mode);
-    });
+    return run(name, folder, script.stem().string(), options,
+               [&](lua_State* L) { return luaL_loadfilex(L, name.c_str(), mode); });
 }
 
-ScriptResult runScriptString(std::string_view source, const std::string& chunkName, const fs::path& scriptDir,
-                             const ScriptOptions& options) {
+ScriptResult runScriptString(std::string_view source, const std::string& chunkName,
+                             const fs::path& scriptDir, const ScriptOptions& options) {
     return run(chunkName, scriptDir, options.journalStem, options, [&](lua_State* L) {
         return luaL_loadbufferx(L, source.data(), source.size(), ("=" + chunkName).c_str(), "t");
     });

@@ -21,9 +21,10 @@ struct ScriptOptions {
     std::filesystem::path outputDir = ".";
     /// Lift the sandbox (Sandbox.h). The limits stay.
     bool unsafe = false;
-    std::size_t maxMemory = std::size_t(512) << 20;     ///< bytes the Lua state may hold; 0 = no limit
-    std::uint64_t maxInstructions = 1'000'000'000;      ///< VM instructions; 0 = no budget
-    /// Relax every doc:relax with this backend, overriding the script's choice. Empty = the script's.
+    std::size_t maxMemory = std::size_t(512) << 20; ///< bytes the Lua state may hold; 0 = no limit
+    std::uint64_t maxInstructions = 1'000'000'000;  ///< VM instructions; 0 = no budget
+    /// Relax every doc:relax with this backend, overriding the script's choice. Empty = the
+    /// script's.
     std::string backend;
     /// Journal the documents the script makes to outputDir/<stem>.netj (runFile: the script's
     /// file name without extension). Empty for runString = no journal.

@@ -10,7 +10,8 @@ namespace {
 
 std::string allowedKeys(std::initializer_list<const char*> allowed) {
     std::string out;
-    for (const char* key : allowed) out += (out.empty() ? "" : ", ") + std::string(key);
+    for (const char* key : allowed)
+        out += (out.empty() ? "" : ", ") + std::string(key);
     return out;
 }
 
@@ -21,16 +22,18 @@ TableArgs::TableArgs(const Call& call, int index, std::initializer_list<const ch
     lua_State* L = call.L;
     if (lua_type(L, index_) != LUA_TTABLE) {
         if (index_ == 1 || lua_type(L, 1) == LUA_TTABLE)
-            call.fail(std::string("call it as doc:") + call.name + "{...} (with a colon and a table of arguments)");
-        call.fail(std::string("expected a table of arguments {") + allowedKeys(allowed) + "}, got " +
-                  describe(L, index_));
+            call.fail(std::string("call it as doc:") + call.name +
+                      "{...} (with a colon and a table of arguments)");
+        call.fail(std::string("expected a table of arguments {") + allowedKeys(allowed) +
+                  "}, got " + describe(L, index_));
     }
     lua_pushnil(L);
     while (lua_next(L, index_) != 0) {
         lua_pop(L, 1); // the value; keep the key for lua_next
         bool known = false;
         if (lua_type(L, -1) == LUA_TSTRING)
-            for (const char* key : allowed) known = known || std::string_view(lua_tostring(L, -1)) == key;
+            for (const char* key : allowed)
+                known = known || std::string_view(lua_tostring(L, -1)) == key;
         if (!known) {
             const std::string key = describe(L, -1);
             lua_pop(L, 1);
@@ -55,12 +58,13 @@ void TableArgs::missing(const char* key, const std::string& expected) const {
     call_.fail(std::string("argument '") + key + "' is missing; expected " + expected);
 }
 
-std::int64_t TableArgs::whole(const char* key, std::optional<std::int64_t> fallback, std::int64_t min,
-                              std::int64_t max) const {
+std::int64_t TableArgs::whole(const char* key, std::optional<std::int64_t> fallback,
+                              std::int64_t min, std::int64_t max) const {
     const int at = push(key);
     if (lua_isnil(call_.L, at)) {
         pop();
-        if (!fallback) missing(key, "a whole number");
+        if (!fallback)
+            missing(key, "a whole number");
         return *fallback;
     }
     const std::int64_t value = checkWhole(call_, at, key, min, max);
@@ -72,7 +76,8 @@ double TableArgs::finite(const char* key, std::optional<double> fallback) const 
     const int at = push(key);
     if (lua_isnil(call_.L, at)) {
         pop();
-        if (!fallback) missing(key, "a number");
+        if (!fallback)
+            missing(key, "a number");
         return *fallback;
     }
     const double value = checkFinite(call_, at, key);
@@ -84,7 +89,8 @@ double TableArgs::positive(const char* key, std::optional<double> fallback) cons
     const int at = push(key);
     if (lua_isnil(call_.L, at)) {
         pop();
-        if (!fallback) missing(key, "a number > 0");
+        if (!fallback)
+            missing(key, "a number > 0");
         return *fallback;
     }
     const double value = lua_tonumber(call_.L, at);
@@ -97,7 +103,8 @@ double TableArgs::positive(const char* key, std::optional<double> fallback) cons
 bool TableArgs::boolean(const char* key, bool fallback) const {
     const int at = push(key);
     const int type = lua_type(call_.L, at);
-    if (type != LUA_TNIL && type != LUA_TBOOLEAN) call_.bad(key, at, "true or false");
+    if (type != LUA_TNIL && type != LUA_TBOOLEAN)
+        call_.bad(key, at, "true or false");
     const bool value = type == LUA_TNIL ? fallback : lua_toboolean(call_.L, at) != 0;
     pop();
     return value;
@@ -107,7 +114,8 @@ std::string TableArgs::string(const char* key, std::optional<std::string> fallba
     const int at = push(key);
     if (lua_isnil(call_.L, at)) {
         pop();
-        if (!fallback) missing(key, "a string");
+        if (!fallback)
+            missing(key, "a string");
         return *fallback;
     }
     std::string value = checkString(call_, at, key);
@@ -120,7 +128,8 @@ std::string TableArgs::choice(const char* key, const std::vector<std::string>& a
     const int at = push(key);
     if (lua_isnil(call_.L, at)) {
         pop();
-        if (!fallback) missing(key, "one of " + listOf(allowed));
+        if (!fallback)
+            missing(key, "one of " + listOf(allowed));
         return *fallback;
     }
     std::string value = checkChoice(call_, at, key, allowed);
@@ -130,7 +139,8 @@ std::string TableArgs::choice(const char* key, const std::vector<std::string>& a
 
 Vec3 TableArgs::vec3(const char* key) const {
     const int at = push(key);
-    if (lua_isnil(call_.L, at)) missing(key, "a point {x, y, z}");
+    if (lua_isnil(call_.L, at))
+        missing(key, "a point {x, y, z}");
     const Vec3 value = checkVec3(call_, at, key);
     pop();
     return value;
@@ -140,7 +150,8 @@ std::vector<Vec3> TableArgs::points(const char* key) const {
     lua_State* L = call_.L;
     const int at = push(key);
     if (lua_type(L, at) != LUA_TTABLE) {
-        if (lua_isnil(L, at)) missing(key, "a list of points {{x, y, z}, ...}");
+        if (lua_isnil(L, at))
+            missing(key, "a list of points {{x, y, z}, ...}");
         call_.bad(key, at, "a list of points {{x, y, z}, ...}");
     }
     std::vector<Vec3> points;
@@ -159,7 +170,8 @@ std::vector<Vec3> TableArgs::points(const char* key) const {
 std::vector<double> TableArgs::numbers(const char* key) const {
     lua_State* L = call_.L;
     const int at = push(key);
-    if (lua_type(L, at) != LUA_TTABLE) call_.bad(key, at, "a list of numbers");
+    if (lua_type(L, at) != LUA_TTABLE)
+        call_.bad(key, at, "a list of numbers");
     std::vector<double> values;
     const lua_Integer n = lua_Integer(lua_rawlen(L, at));
     for (lua_Integer i = 1; i <= n; ++i) {

@@ -18,7 +18,8 @@ namespace {
 void journalIfAsked(lua_State* L, Document& doc) {
     ScriptContext& ctx = context(L);
     const std::filesystem::path path = nextJournalPath(ctx);
-    if (path.empty()) return;
+    if (path.empty())
+        return;
     doc.attachJournal(path);
     ctx.journals.push_back(path);
 }
@@ -101,16 +102,20 @@ int w_rename(Call& call) {
     Document& doc = checkDocument(call);
     const TableArgs args(call, 2, {"piece", "rail", "name"});
     const std::string name = args.string("name", std::nullopt);
-    if (args.has("piece") == args.has("rail")) call.fail("give piece or rail (one of them)");
-    if (args.has("piece")) doc.execute(RenamePieceCommand{pieceArg(args, "piece"), name});
-    else doc.execute(RenameRailCommand{railArg(args, "rail"), name});
+    if (args.has("piece") == args.has("rail"))
+        call.fail("give piece or rail (one of them)");
+    if (args.has("piece"))
+        doc.execute(RenamePieceCommand{pieceArg(args, "piece"), name});
+    else
+        doc.execute(RenameRailCommand{railArg(args, "rail"), name});
     return 0;
 }
 
 /// doc:hash() -> 16 hex digits: equal hashes = the same sculpture.
 int w_hash(Call& call) {
     char text[17];
-    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(checkDocument(call).hash()));
+    std::snprintf(text, sizeof text, "%016llx",
+                  static_cast<unsigned long long>(checkDocument(call).hash()));
     lua_pushstring(call.L, text);
     return 1;
 }

@@ -21,7 +21,8 @@ namespace {
 /// Pushes JSON as Lua values: objects become tables with string keys, arrays sequences
 /// (1-based), integers integers, null nil.
 void pushJson(lua_State* L, const nlohmann::json& value) {
-    if (!lua_checkstack(L, 3)) throw std::runtime_error("the report is nested too deeply");
+    if (!lua_checkstack(L, 3))
+        throw std::runtime_error("the report is nested too deeply");
     switch (value.type()) {
     case nlohmann::json::value_t::object:
         lua_createtable(L, 0, int(value.size()));
@@ -39,14 +40,24 @@ void pushJson(lua_State* L, const nlohmann::json& value) {
         }
         break;
     }
-    case nlohmann::json::value_t::string: lua_pushstring(L, value.get_ref<const std::string&>().c_str()); break;
-    case nlohmann::json::value_t::boolean: lua_pushboolean(L, value.get<bool>()); break;
-    case nlohmann::json::value_t::number_integer: lua_pushinteger(L, value.get<std::int64_t>()); break;
+    case nlohmann::json::value_t::string:
+        lua_pushstring(L, value.get_ref<const std::string&>().c_str());
+        break;
+    case nlohmann::json::value_t::boolean:
+        lua_pushboolean(L, value.get<bool>());
+        break;
+    case nlohmann::json::value_t::number_integer:
+        lua_pushinteger(L, value.get<std::int64_t>());
+        break;
     case nlohmann::json::value_t::number_unsigned:
         lua_pushinteger(L, lua_Integer(value.get<std::uint64_t>()));
         break;
-    case nlohmann::json::value_t::number_float: lua_pushnumber(L, value.get<double>()); break;
-    default: lua_pushnil(L); break;
+    case nlohmann::json::value_t::number_float:
+        lua_pushnumber(L, value.get<double>());
+        break;
+    default:
+        lua_pushnil(L);
+        break;
     }
 }
 
@@ -55,7 +66,8 @@ const std::vector<std::string> kViews = {"top", "side", "front", "perspective", 
 
 ExportOptions exportArgs(const Call& call) {
     ExportOptions o;
-    if (lua_isnoneornil(call.L, 3)) return o;
+    if (lua_isnoneornil(call.L, 3))
+        return o;
     const TableArgs args(call, 3, {"colour_by", "tube_radius", "width", "height", "view"});
     o.colourBy = args.choice("colour_by", kColourBy, o.colourBy);
     if (args.has("tube_radius")) {
@@ -73,8 +85,10 @@ ExportOptions exportArgs(const Call& call) {
 
 std::string extensionOf(const std::filesystem::path& path) {
     std::string ext = path.extension().string();
-    if (!ext.empty()) ext.erase(0, 1);
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (!ext.empty())
+        ext.erase(0, 1);
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
     return ext;
 }
 
@@ -88,8 +102,10 @@ int w_export(Call& call) {
     const std::string ext = extensionOf(given);
     if (std::find(formats.begin(), formats.end(), ext) == formats.end()) {
         std::string allowed;
-        for (const std::string& f : formats) allowed += (allowed.empty() ? "." : ", .") + f;
-        call.fail("argument 'path' must end in one of " + allowed + " (the format), got \"" + given + "\"");
+        for (const std::string& f : formats)
+            allowed += (allowed.empty() ? "." : ", .") + f;
+        call.fail("argument 'path' must end in one of " + allowed + " (the format), got \"" +
+                  given + "\"");
     }
     const auto path = resolveWritePath(context(call.L), given, call.name);
     exportFile(doc, path, options);
@@ -113,8 +129,9 @@ int w_write_report(Call& call) {
         call.fail("argument 'path' must end in .json, .md or .csv, got \"" + given + "\"");
     const auto path = resolveWritePath(context(call.L), given, call.name);
     const nlohmann::json report = buildReport(doc);
-    const std::string text = ext == "json" ? report.dump(2) + "\n" : ext == "md" ? reportMarkdown(report)
-                                                                                 : reportPiecesCsv(report);
+    const std::string text = ext == "json" ? report.dump(2) + "\n"
+                             : ext == "md" ? reportMarkdown(report)
+                                           : reportPiecesCsv(report);
     writeFileDurably(path, text);
     lua_pushstring(call.L, path.c_str());
     return 1;
@@ -145,7 +162,9 @@ int w_script_dir(Call& call) {
 } // namespace
 
 void addIoMethods(lua_State* L) {
-    setFunctions(L, {{"export", entry<w_export>}, {"report", entry<w_report>}, {"write_report", entry<w_write_report>}});
+    setFunctions(L, {{"export", entry<w_export>},
+                     {"report", entry<w_report>},
+                     {"write_report", entry<w_write_report>}});
 }
 
 void addModuleIoFunctions(lua_State* L) {

@@ -23,15 +23,18 @@ Gear gearArg(const TableArgs& args, const char* key, std::optional<Gear> fallbac
     Gear gear;
     switch (lua_type(call.L, at)) {
     case LUA_TNIL:
-        if (!fallback) args.missing(key, kGearExpected);
+        if (!fallback)
+            args.missing(key, kGearExpected);
         gear = *fallback;
         break;
     case LUA_TNUMBER: {
         const double value = lua_tonumber(call.L, at);
         bool found = false;
         for (Gear g : allowedGears())
-            if (std::abs(value - g.value()) < 1e-9) gear = g, found = true;
-        if (!found) call.bad(key, at, kGearExpected);
+            if (std::abs(value - g.value()) < 1e-9)
+                gear = g, found = true;
+        if (!found)
+            call.bad(key, at, kGearExpected);
         break;
     }
     case LUA_TSTRING:
@@ -41,7 +44,8 @@ Gear gearArg(const TableArgs& args, const char* key, std::optional<Gear> fallbac
             call.bad(key, at, kGearExpected);
         }
         break;
-    default: call.bad(key, at, kGearExpected);
+    default:
+        call.bad(key, at, kGearExpected);
     }
     args.pop();
     return gear;
@@ -49,7 +53,8 @@ Gear gearArg(const TableArgs& args, const char* key, std::optional<Gear> fallbac
 
 /// The piece of a call that takes only a piece: doc:f{piece = p} or doc:f(p).
 PieceId onlyPiece(const Call& call) {
-    if (lua_type(call.L, 2) == LUA_TUSERDATA) return checkPiece(call, 2, "piece");
+    if (lua_type(call.L, 2) == LUA_TUSERDATA)
+        return checkPiece(call, 2, "piece");
     const TableArgs args(call, 2, {"piece"});
     return pieceArg(args, "piece");
 }
@@ -57,8 +62,10 @@ PieceId onlyPiece(const Call& call) {
 /// A finite number >= 0 (masses), or the fallback.
 double nonNegative(const TableArgs& args, const char* key, double fallback) {
     const int at = args.push(key);
-    const double value = lua_isnil(args.call().L, at) ? fallback : checkFinite(args.call(), at, key);
-    if (value < 0) args.call().bad(key, at, "a finite number >= 0");
+    const double value =
+        lua_isnil(args.call().L, at) ? fallback : checkFinite(args.call(), at, key);
+    if (value < 0)
+        args.call().bad(key, at, "a finite number >= 0");
     args.pop();
     return value;
 }
@@ -68,11 +75,14 @@ int w_attach_to_rail(Call& call) {
     const TableArgs args(call, 2, {"rail", "columns", "spacing", "rows", "bar", "at", "reverse"});
     AttachToRailArgs a;
     a.rail = railArg(args, "rail");
-    if (args.has("columns") && args.has("spacing")) call.fail("give columns or spacing, not both");
+    if (args.has("columns") && args.has("spacing"))
+        call.fail("give columns or spacing, not both");
     if (!args.has("columns") && !args.has("spacing"))
         call.fail("argument 'columns' (or 'spacing') is missing; expected a whole number >= 2");
-    if (args.has("columns")) a.columns = int(args.whole("columns", std::nullopt, 2, kMaxColumns));
-    else a.spacing = args.positive("spacing", std::nullopt);
+    if (args.has("columns"))
+        a.columns = int(args.whole("columns", std::nullopt, 2, kMaxColumns));
+    else
+        a.spacing = args.positive("spacing", std::nullopt);
     a.rows = int(args.whole("rows", std::nullopt, 1, kMaxRows));
     a.bar = args.positive("bar", a.bar);
     a.at = args.finite("at", 0.0);
@@ -138,9 +148,12 @@ int w_set_bar_length(Call& call) {
     const TableArgs args(call, 2, {"piece", "column", "row", "length"});
     SetBarLengthCommand command;
     command.piece = pieceArg(args, "piece");
-    if (args.has("column") && args.has("row")) call.fail("give column or row, not both");
-    if (args.has("column")) command.column = int(args.whole("column", std::nullopt, 0, kMaxColumns));
-    if (args.has("row")) command.row = int(args.whole("row", std::nullopt, 0, kMaxRows));
+    if (args.has("column") && args.has("row"))
+        call.fail("give column or row, not both");
+    if (args.has("column"))
+        command.column = int(args.whole("column", std::nullopt, 0, kMaxColumns));
+    if (args.has("row"))
+        command.row = int(args.whole("row", std::nullopt, 0, kMaxRows));
     command.length = args.positive("length", std::nullopt);
     doc.execute(command);
     return 0;
@@ -168,13 +181,15 @@ int w_disconnect(Call& call) {
 /// not given keep their current values.
 int w_set_material(Call& call) {
     Document& doc = checkDocument(call);
-    const TableArgs args(call, 2, {"piece", "stiffness", "compression_ratio", "knot_mass", "linear_density"});
+    const TableArgs args(
+        call, 2, {"piece", "stiffness", "compression_ratio", "knot_mass", "linear_density"});
     const PieceId piece = pieceArg(args, "piece");
     Material m = doc.sculpture().piece(piece).material;
     m.stiffness = args.positive("stiffness", m.stiffness);
     m.compressionRatio = nonNegative(args, "compression_ratio", m.compressionRatio);
     if (m.compressionRatio > 1)
-        call.fail("argument 'compression_ratio' must be from 0 to 1, got " + formatNumber(m.compressionRatio));
+        call.fail("argument 'compression_ratio' must be from 0 to 1, got " +
+                  formatNumber(m.compressionRatio));
     m.knotMass = nonNegative(args, "knot_mass", m.knotMass);
     m.linearDensity = nonNegative(args, "linear_density", m.linearDensity);
     doc.execute(SetMaterialCommand{piece, m});
@@ -188,12 +203,15 @@ int w_set_colour(Call& call) {
     const PieceId piece = pieceArg(args, "piece");
     static const char* const kRgb[3] = {"r", "g", "b"};
     const int at = args.push("colour");
-    if (lua_isnil(call.L, at)) args.missing("colour", "a colour {r, g, b}");
-    const Vec3 c = checkTriple(call, at, "colour", kRgb, "a colour {r, g, b} of numbers from 0 to 1");
+    if (lua_isnil(call.L, at))
+        args.missing("colour", "a colour {r, g, b}");
+    const Vec3 c =
+        checkTriple(call, at, "colour", kRgb, "a colour {r, g, b} of numbers from 0 to 1");
     args.pop();
     for (double v : {c.x, c.y, c.z})
         if (!(v >= 0 && v <= 1))
-            call.fail("argument 'colour' must be {r, g, b} with components from 0 to 1, got " + formatNumber(v));
+            call.fail("argument 'colour' must be {r, g, b} with components from 0 to 1, got " +
+                      formatNumber(v));
     doc.execute(SetColourCommand{piece, Colour{c.x, c.y, c.z}});
     return 0;
 }

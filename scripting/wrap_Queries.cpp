@@ -83,8 +83,10 @@ void pushPieceInfo(lua_State* L, int docIndex, const Sculpture& s, PieceId id) {
         pushRailEdge(L, docIndex, *p.bottom);
         lua_setfield(L, -2, "bottom");
     }
-    if (const PieceId left = s.leftPartner(id)) pushPiece(L, docIndex, left), lua_setfield(L, -2, "left");
-    if (const PieceId right = s.rightPartner(id)) pushPiece(L, docIndex, right), lua_setfield(L, -2, "right");
+    if (const PieceId left = s.leftPartner(id))
+        pushPiece(L, docIndex, left), lua_setfield(L, -2, "left");
+    if (const PieceId right = s.rightPartner(id))
+        pushPiece(L, docIndex, right), lua_setfield(L, -2, "right");
     pushPieceList(L, docIndex, s.childrenOf(id));
     lua_setfield(L, -2, "children");
 }
@@ -123,7 +125,8 @@ void pushKnots(lua_State* L, const Document& doc, PieceId id) {
 
 /// The piece of doc:f(p) or doc:f{piece = p}.
 PieceId pieceArgument(const Call& call) {
-    if (lua_type(call.L, 2) == LUA_TUSERDATA) return checkPiece(call, 2, "piece");
+    if (lua_type(call.L, 2) == LUA_TUSERDATA)
+        return checkPiece(call, 2, "piece");
     const TableArgs args(call, 2, {"piece"});
     return pieceArg(args, "piece");
 }
@@ -186,7 +189,9 @@ int h_rail_point(Call& call) {
 } // namespace
 
 void addQueryMethods(lua_State* L) {
-    setFunctions(L, {{"piece_info", entry<w_piece_info>}, {"knots", entry<w_knots>}, {"rail_info", entry<w_rail_info>}});
+    setFunctions(L, {{"piece_info", entry<w_piece_info>},
+                     {"knots", entry<w_knots>},
+                     {"rail_info", entry<w_rail_info>}});
 }
 
 void addPieceHandleMethods(lua_State* L) {

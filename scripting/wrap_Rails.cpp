@@ -21,20 +21,24 @@ CurveSpec curveArgs(const TableArgs& args) {
     CurveSpec spec;
     spec.spline = spline;
     spec.closed = args.boolean("closed", false);
-    spec.sampling = args.choice("sampling", kSamplings, "arclength") == "parameter" ? Sampling::Parameter
-                                                                                    : Sampling::ArcLength;
+    spec.sampling = args.choice("sampling", kSamplings, "arclength") == "parameter"
+                        ? Sampling::Parameter
+                        : Sampling::ArcLength;
     if (polyline) {
         for (const char* key : {"degree", "knots", "weights"})
             if (args.has(key))
-                call.fail(std::string("argument '") + key + "' belongs to a B-spline (control = {...}); " +
+                call.fail(std::string("argument '") + key +
+                          "' belongs to a B-spline (control = {...}); " +
                           "points = {...} make a polyline");
         spec.points = args.points("points");
         return spec;
     }
     spec.points = args.points("control");
     spec.degree = int(args.whole("degree", 3, 1, 7));
-    if (args.has("knots")) spec.knots = args.numbers("knots");
-    if (args.has("weights")) spec.weights = args.numbers("weights");
+    if (args.has("knots"))
+        spec.knots = args.numbers("knots");
+    if (args.has("weights"))
+        spec.weights = args.numbers("weights");
     return spec;
 }
 
@@ -42,8 +46,8 @@ CurveSpec curveArgs(const TableArgs& args) {
 /// doc:add_rail{name, degree, control = {...}, knots, weights, closed, sampling}.
 int w_add_rail(Call& call) {
     Document& doc = checkDocument(call);
-    const TableArgs args(call, 2,
-                         {"name", "points", "control", "degree", "knots", "weights", "closed", "sampling"});
+    const TableArgs args(
+        call, 2, {"name", "points", "control", "degree", "knots", "weights", "closed", "sampling"});
     AddRailCommand command{args.string("name", std::string()), curveArgs(args)};
     const CommandResult created = doc.execute(command);
     pushRail(call.L, 1, created.rails.at(0));

@@ -20,7 +20,8 @@ Wind windArg(const TableArgs& args) {
     w.direction = wind.vec3("direction");
     w.pressure = wind.finite("pressure", std::nullopt);
     if (w.pressure < 0)
-        call.fail("argument 'wind.pressure' must be a number of N/m >= 0, got " + formatNumber(w.pressure));
+        call.fail("argument 'wind.pressure' must be a number of N/m >= 0, got " +
+                  formatNumber(w.pressure));
     (void)validatedWindDirection(w);
     args.pop();
     return w;
@@ -31,17 +32,20 @@ DocumentRelaxOptions relaxArgs(const Call& call) {
     RelaxOptions& o = options.solver;
     if (!lua_isnoneornil(call.L, 2)) {
         const TableArgs args(call, 2,
-                             {"tolerance", "max_seconds", "max_steps", "backend", "wind", "continuation", "threads"});
+                             {"tolerance", "max_seconds", "max_steps", "backend", "wind",
+                              "continuation", "threads"});
         o.tolerance = args.positive("tolerance", o.tolerance);
         o.maxSeconds = args.positive("max_seconds", o.maxSeconds);
         o.maxSteps = args.whole("max_steps", o.maxSteps, -1, INT64_MAX);
         options.backend = args.choice("backend", relaxerNames(), options.backend);
-        if (args.has("wind")) o.wind = windArg(args);
+        if (args.has("wind"))
+            o.wind = windArg(args);
         o.continuation = args.boolean("continuation", o.continuation);
         o.threads = int(args.whole("threads", 0, 0, 1024));
     }
     const ScriptContext& ctx = context(call.L);
-    if (!ctx.backendOverride.empty()) options.backend = ctx.backendOverride;
+    if (!ctx.backendOverride.empty())
+        options.backend = ctx.backendOverride;
     o.progress = ctx.relaxProgress;
     return options;
 }
@@ -58,12 +62,14 @@ void pushRelaxResult(lua_State* L, const RelaxResult& r) {
 }
 
 /// doc:relax{tolerance, max_seconds, max_steps, backend, wind = {direction, pressure},
-/// continuation, threads} -> {converged, residual, steps, evaluations, seconds, backend, stop_reason}.
+/// continuation, threads} -> {converged, residual, steps, evaluations, seconds, backend,
+/// stop_reason}.
 int w_relax(Call& call) {
     Document& doc = checkDocument(call);
     const DocumentRelaxOptions options = relaxArgs(call);
     const RelaxResult result = doc.relax(options);
-    if (const auto& finished = context(call.L).relaxFinished) finished(result);
+    if (const auto& finished = context(call.L).relaxFinished)
+        finished(result);
     pushRelaxResult(call.L, result);
     return 1;
 }
@@ -71,8 +77,10 @@ int w_relax(Call& call) {
 /// doc:last_relax() -> the last relax result, or nil before any.
 int w_last_relax(Call& call) {
     const RelaxResult& r = checkDocument(call).lastRelax();
-    if (r.stopReason.empty() && r.steps == 0 && !r.converged) lua_pushnil(call.L);
-    else pushRelaxResult(call.L, r);
+    if (r.stopReason.empty() && r.steps == 0 && !r.converged)
+        lua_pushnil(call.L);
+    else
+        pushRelaxResult(call.L, r);
     return 1;
 }
 
@@ -93,6 +101,8 @@ void addRelaxMethods(lua_State* L) {
     setFunctions(L, {{"relax", entry<w_relax>}, {"last_relax", entry<w_last_relax>}});
 }
 
-void addModuleRelaxFunctions(lua_State* L) { setFunctions(L, {{"backends", entry<w_backends>}}); }
+void addModuleRelaxFunctions(lua_State* L) {
+    setFunctions(L, {{"backends", entry<w_backends>}});
+}
 
 } // namespace netsculpt::lua

@@ -69,6 +69,9 @@ struct Document::State {
     bool warm = false;            ///< compiled positions come from a relaxation (carried on edits)
     bool relaxed = false;
     RelaxResult lastRelax;
+    /// The backend of the last relax(), kept so that it can reuse what it analysed (the fast
+    /// path keeps its sparse ordering while the bars stay the same).
+    std::unique_ptr<Relaxer> relaxer;
     std::ptrdiff_t cleanIndex = 0; ///< -1: no state of the history is the saved one
     bool gestureOpen = false;
     std::vector<JournalEntry> log; ///< every entry since the document began: what its journal holds
@@ -338,10 +341,16 @@ CompiledSculpture& Document::compiled() { return state_->compiled; }
 const RelaxResult& Document::lastRelax() const { return state_->lastRelax; }
 bool Document::isRelaxed() const { return state_->relaxed; }
 
+namespace {
+/// The name a backend reports for a requested backend ("auto" runs the fast path).
+std::string_view relaxerKey(std::string_view requested) { return requested == "auto" ? "fast" : requested; }
+} // namespace
+
 RelaxResult Document::relax(const DocumentRelaxOptions& options) {
     State& st = *state_;
-    const std::unique_ptr<Relaxer> relaxer = makeRelaxer(options.backend);
-    RelaxResult result = relaxer->relax(st.compiled.system, options.solver);
+    if (!st.relaxer || relaxerKey(options.backend) != st.relaxer->name()) st.relaxer = makeRelaxer(options.backend);
+    RelaxResult result = st.relaxer->relax(st.compiled.system, options.solver);
+    result.tolerance = options.solver.tolerance;
     st.lastRelax = result;
     st.relaxed = result.converged;
     st.warm = true;

@@ -61,8 +61,8 @@ void buildDemoSculpture(Document& doc) {
 }
 
 void buildLargeDemoSculpture(Document& doc, int knots) {
-    // A tube about twice as long as it is round: columns ~ sqrt(knots / 2).
-    const int columns = std::max(8, int(std::lround(std::sqrt(knots / 2.0))));
+    // A wide tube: twice as many columns as rows.
+    const int columns = std::max(8, int(std::lround(std::sqrt(knots * 2.0))));
     const int rows = std::max(2, knots / columns);
     const double radius = 3.0;
     const double spacing = 2 * std::numbers::pi * radius / columns;

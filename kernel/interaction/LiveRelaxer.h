@@ -34,7 +34,9 @@ struct LiveRelaxOptions {
     double previewTolerance = 1e-3;   ///< the preview stops below this residual (at its stiffness)
     double stageTolerance = 1e-3;     ///< refine: residual that ends a softer continuation stage
     double refineTolerance = 1e-6;    ///< refine: converged below this residual at full stiffness
-    double continuationFactor = 10;   ///< refine: stiffness ratio between stages, > 1
+    /// refine: stiffness ratio between stages, > 1. 100 suits the Newton backend (from the preview
+    /// it goes to the material in one stage); the RK4 backend wants 10.
+    double continuationFactor = 100;
     double maxSeconds = 600;          ///< a run gives up after this long, s
     double publishInterval = 1.0 / 30; ///< s of relaxation between two published shapes
     std::string backend = "auto";     ///< see makeRelaxer

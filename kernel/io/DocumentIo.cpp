@@ -13,7 +13,7 @@ RelaxStatus relaxStatus(const Document& doc) {
     RelaxStatus status;
     status.relaxed = doc.isRelaxed();
     status.last = doc.lastRelax();
-    status.tolerance = RelaxOptions{}.tolerance;
+    status.tolerance = status.last.tolerance > 0 ? status.last.tolerance : RelaxOptions{}.tolerance;
     return status;
 }
 

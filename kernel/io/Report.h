@@ -43,8 +43,8 @@ nlohmann::json buildReport(const Document& doc);
 /// The same for a sculpture and its compiled system at its current positions.
 nlohmann::json buildReport(const Sculpture& sculpture, const CompiledSculpture& compiled,
                            const RelaxStatus& status = {});
-/// What `doc` knows about its shape; tolerance = RelaxOptions' default (the document does not
-/// keep the tolerance of its last relaxation).
+/// What `doc` knows about its shape; tolerance = that of its last relaxation (RelaxOptions'
+/// default before any).
 RelaxStatus relaxStatus(const Document& doc);
 
 /// The Markdown summary that `netsculpt report` prints.

@@ -62,6 +62,7 @@ struct RelaxResult {
     std::int64_t forceEvaluations = 0; ///< passes of Eq. 3 over the whole system
     double seconds = 0;                ///< wall time, s
     std::string backend = "rk4";
+    double tolerance = 0; ///< the tolerance the run was asked for (RelaxOptions::tolerance)
     /// "converged", "time limit", "step limit", "cancelled" or "diverged" (the step size
     /// collapsed; the positions are the last good state, never NaN).
     std::string stopReason;

@@ -29,8 +29,10 @@ TEST_CASE("Budget and limit texts", "[limits]") {
     CHECK(lua::instructionBudgetText(100) == "100");
     CHECK(lua::instructionBudgetText(2'500'000) == "2500000");
     CHECK(lua::memoryLimitText(std::size_t(512) << 20) == "512 MiB");
-    CHECK(lua::memoryExceededMessage(std::size_t(512) << 20) == "script exceeded 512 MiB of memory");
-    CHECK(lua::instructionsExceededMessage(1'000'000'000) == "script exceeded its budget of 10^9 instructions");
+    CHECK(lua::memoryExceededMessage(std::size_t(512) << 20) ==
+          "script exceeded 512 MiB of memory");
+    CHECK(lua::instructionsExceededMessage(1'000'000'000) ==
+          "script exceeded its budget of 10^9 instructions");
 }
 
 TEST_CASE("An endless loop is stopped by the instruction budget", "[limits]") {
@@ -45,10 +47,12 @@ TEST_CASE("An endless loop is stopped by the instruction budget", "[limits]") {
         CHECK(r.instructions <= 10'001'000);
     }
     SECTION("inside pcall, xpcall and coroutines: the error cannot be caught") {
-        for (const char* code : {"while true do pcall(function() while true do end end) end",
-                                 "while true do xpcall(function() while true do end end, print) end",
-                                 "while true do coroutine.resume(coroutine.create(function() while true do end end)) end",
-                                 "local ok = pcall(function() while true do end end); print('survived')"}) {
+        for (const char* code :
+             {"while true do pcall(function() while true do end end) end",
+              "while true do xpcall(function() while true do end end, print) end",
+              "while true do coroutine.resume(coroutine.create(function() while true do end end)) "
+              "end",
+              "local ok = pcall(function() while true do end end); print('survived')"}) {
             INFO(code);
             const auto r = f.run(code, o);
             CHECK(r.stop == lua::Stop::Instructions);
@@ -66,11 +70,11 @@ TEST_CASE("An endless loop is stopped by the instruction budget", "[limits]") {
 TEST_CASE("A huge table is stopped by the memory limit", "[limits]") {
     const ScriptFolders f("memory");
     const auto o = limited(f, 0, 32);
-    for (const char* code : {"local t = {} for i = 1, 1e9 do t[i] = i end",
-                             "local t = {} for i = 1, 1e9 do t[i] = {i} end",
-                             "local s = string.rep('x', 2^30)",
-                             "while true do pcall(function() local t = {} for i = 1, 1e9 do t[i] = i end end) end",
-                             "local t = {} while true do t[#t + 1] = tostring(#t) .. 'abcdefgh' end"}) {
+    for (const char* code :
+         {"local t = {} for i = 1, 1e9 do t[i] = i end",
+          "local t = {} for i = 1, 1e9 do t[i] = {i} end", "local s = string.rep('x', 2^30)",
+          "while true do pcall(function() local t = {} for i = 1, 1e9 do t[i] = i end end) end",
+          "local t = {} while true do t[#t + 1] = tostring(#t) .. 'abcdefgh' end"}) {
         INFO(code);
         const auto r = f.run(code, o);
         CHECK_FALSE(r.ok);
@@ -79,14 +83,15 @@ TEST_CASE("A huge table is stopped by the memory limit", "[limits]") {
         CHECK(r.peakMemory <= (std::size_t(32) << 20));
     }
     SECTION("the host goes on, and the limit does not get in the way of normal work") {
-        const auto r = f.run("local ns = require 'netsculpt'\n"
-                             "local doc = ns.new()\n"
-                             "local pts = {} for i = 0, 63 do local a = 2 * math.pi * i / 64\n"
-                             "  pts[#pts + 1] = {2 * math.cos(a), 2 * math.sin(a), 5} end\n"
-                             "local r = doc:add_rail{points = pts, closed = true}\n"
-                             "local p = doc:attach_to_rail{rail = r, columns = 200, rows = 200, bar = 0.1}\n"
-                             "assert(#doc:knots(p) == 200)",
-                             o);
+        const auto r =
+            f.run("local ns = require 'netsculpt'\n"
+                  "local doc = ns.new()\n"
+                  "local pts = {} for i = 0, 63 do local a = 2 * math.pi * i / 64\n"
+                  "  pts[#pts + 1] = {2 * math.cos(a), 2 * math.sin(a), 5} end\n"
+                  "local r = doc:add_rail{points = pts, closed = true}\n"
+                  "local p = doc:attach_to_rail{rail = r, columns = 200, rows = 200, bar = 0.1}\n"
+                  "assert(#doc:knots(p) == 200)",
+                  o);
         CHECK(r.error == "");
         CHECK(r.ok);
     }

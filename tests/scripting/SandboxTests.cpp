@@ -12,11 +12,20 @@ namespace fs = std::filesystem;
 
 TEST_CASE("Dangerous functions refuse with a clear error", "[sandbox]") {
     const ScriptFolders f("refused");
-    const char* const calls[] = {"os.execute('true')",       "io.popen('ls')",         "os.exit(3)",
-                                 "os.remove('x')",           "os.rename('a', 'b')",    "os.tmpname()",
-                                 "os.setlocale('de_DE')",    "io.tmpfile()",           "package.loadlib('x', 'y')",
-                                 "package.searchpath('x', '')", "debug.sethook()",     "debug.getregistry()",
-                                 "debug.getupvalue(print, 1)", "debug.setuservalue(io.stdout, 1)"};
+    const char* const calls[] = {"os.execute('true')",
+                                 "io.popen('ls')",
+                                 "os.exit(3)",
+                                 "os.remove('x')",
+                                 "os.rename('a', 'b')",
+                                 "os.tmpname()",
+                                 "os.setlocale('de_DE')",
+                                 "io.tmpfile()",
+                                 "package.loadlib('x', 'y')",
+                                 "package.searchpath('x', '')",
+                                 "debug.sethook()",
+                                 "debug.getregistry()",
+                                 "debug.getupvalue(print, 1)",
+                                 "debug.setuservalue(io.stdout, 1)"};
     for (const char* call : calls) {
         INFO(call);
         const lua::ScriptResult r = f.run(call);
@@ -37,17 +46,25 @@ TEST_CASE("A script writes only through doc:save/export into the output folder",
     fs::create_directories(f.root / "elsewhere");
     fs::create_symlink(f.root / "elsewhere", f.out / "link");
     const std::string prelude = "local ns = require 'netsculpt'; local doc = ns.new()\n";
-    struct Case { std::string code, message; fs::path mustNotExist; };
+    struct Case {
+        std::string code, message;
+        fs::path mustNotExist;
+    };
     const Case cases[] = {
-        {"io.open('w.txt', 'w')", "io.open: writing files is not allowed in a script (mode \"w\")", f.scripts / "w.txt"},
+        {"io.open('w.txt', 'w')", "io.open: writing files is not allowed in a script (mode \"w\")",
+         f.scripts / "w.txt"},
         {"io.open('a.txt', 'a+')", "io.open: writing files is not allowed", f.scripts / "a.txt"},
         {"io.output('o.txt')", "io.output: writing files is not allowed", f.scripts / "o.txt"},
-        {"doc:save('../escape.netj')", "save: \"../escape.netj\" is outside the output folder", f.root / "escape.netj"},
-        {"doc:save('sub/../../escape2.netj')", "is outside the output folder", f.root / "escape2.netj"},
-        {"doc:save('" + (f.root / "abs.netj").string() + "')", "is an absolute path", f.root / "abs.netj"},
+        {"doc:save('../escape.netj')", "save: \"../escape.netj\" is outside the output folder",
+         f.root / "escape.netj"},
+        {"doc:save('sub/../../escape2.netj')", "is outside the output folder",
+         f.root / "escape2.netj"},
+        {"doc:save('" + (f.root / "abs.netj").string() + "')", "is an absolute path",
+         f.root / "abs.netj"},
         {"doc:export('link/knots.csv')", "export: \"link/knots.csv\" is outside the output folder",
          f.root / "elsewhere" / "knots.csv"},
-        {"doc:write_report('../report.md')", "write_report: \"../report.md\" is outside", f.root / "report.md"},
+        {"doc:write_report('../report.md')", "write_report: \"../report.md\" is outside",
+         f.root / "report.md"},
     };
     for (const Case& c : cases) {
         INFO(c.code);
@@ -94,7 +111,8 @@ TEST_CASE("A script reads only in its own folder and the output folder", "[sandb
             {"require('netsculpt').new():import_rails('../secret.txt')", "import_rails: reading"},
             {"require('evil')", "module 'evil' not found"},
             {"require('lpeg')", "C modules other than netsculpt are not allowed"},
-            {"error(select(2, load(string.dump(function() end))))", "attempt to load a binary chunk"},
+            {"error(select(2, load(string.dump(function() end))))",
+             "attempt to load a binary chunk"},
             {"load(string.dump(function() end), 'x', 'b')", "load: binary chunks are not allowed"},
         };
         for (const auto& [code, message] : cases) {
@@ -106,14 +124,16 @@ TEST_CASE("A script reads only in its own folder and the output folder", "[sandb
     }
 }
 
-TEST_CASE("--unsafe lifts the sandbox", "[sandbox]") {
+TEST_CASE("The unsafe option lifts the sandbox", "[sandbox]") {
     const ScriptFolders f("unsafe");
     auto o = f.options();
     o.unsafe = true;
     const fs::path file = f.root / "written.txt";
-    const auto r = f.run("local f = assert(io.open('" + file.string() + "', 'w')); f:write('x'); f:close()\n"
-                         "assert(os.tmpname()); assert(debug.getregistry())\n"
-                         "require('netsculpt').new():save('" + (f.root / "abs.netj").string() + "')\n",
+    const auto r = f.run("local f = assert(io.open('" + file.string() +
+                             "', 'w')); f:write('x'); f:close()\n"
+                             "assert(os.tmpname()); assert(debug.getregistry())\n"
+                             "require('netsculpt').new():save('" +
+                             (f.root / "abs.netj").string() + "')\n",
                          o);
     CHECK(r.error == "");
     CHECK(fs::is_regular_file(file));

@@ -30,8 +30,10 @@ struct ScriptFolders {
     }
 
     /// Runs `code` as the script "<chunk>" in the scripts folder.
-    lua::ScriptResult run(const std::string& code, lua::ScriptOptions o, const std::string& chunk = "test.lua") const {
-        if (o.outputDir == ".") o.outputDir = out;
+    lua::ScriptResult run(const std::string& code, lua::ScriptOptions o,
+                          const std::string& chunk = "test.lua") const {
+        if (o.outputDir == ".")
+            o.outputDir = out;
         return lua::runScriptString(code, chunk, scripts, o);
     }
     lua::ScriptResult run(const std::string& code) const { return run(code, options()); }

@@ -14,17 +14,22 @@ struct Ran {
     std::string output; ///< stdout and stderr together
 };
 
-inline std::filesystem::path cliPath() { return std::filesystem::path(NETSCULPT_BINARY_DIR) / "tools" / "netsculpt"; }
+inline std::filesystem::path cliPath() {
+    return std::filesystem::path(NETSCULPT_BINARY_DIR) / "tools" / "netsculpt";
+}
 
 /// Runs `netsculpt <arguments>` through the shell (arguments are passed as written), with
 /// `environment` ("NAME=value ...") set for it.
 inline Ran runCli(const std::string& arguments, const std::string& environment = "") {
-    const std::string command = environment + " '" + cliPath().string() + "' " + arguments + " 2>&1 </dev/null";
+    const std::string command =
+        environment + " '" + cliPath().string() + "' " + arguments + " 2>&1 </dev/null";
     Ran ran;
     FILE* pipe = popen(command.c_str(), "r");
-    if (pipe == nullptr) return ran;
+    if (pipe == nullptr)
+        return ran;
     std::array<char, 4096> buffer{};
-    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) ran.output.append(buffer.data(), n);
+    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe))
+        ran.output.append(buffer.data(), n);
     const int status = pclose(pipe);
     ran.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return ran;
@@ -32,7 +37,8 @@ inline Ran runCli(const std::string& arguments, const std::string& environment =
 
 /// A fresh folder for a test under the build tree.
 inline std::filesystem::path freshFolder(const std::string& name) {
-    const auto folder = std::filesystem::path(NETSCULPT_BINARY_DIR) / "test-output" / "tools" / name;
+    const auto folder =
+        std::filesystem::path(NETSCULPT_BINARY_DIR) / "test-output" / "tools" / name;
     std::filesystem::remove_all(folder);
     std::filesystem::create_directories(folder);
     return folder;

@@ -43,23 +43,26 @@ std::string printedHash(const std::string& output) {
 
 } // namespace
 
-TEST_CASE("--help, --version and usage errors", "[cli]") {
+TEST_CASE("Help, version and usage errors", "[cli]") {
     const Ran help = runCli("--help");
     CHECK(help.exitCode == 0);
-    for (const char* sub : {"run", "replay", "to-lua", "relax", "export", "report"}) CHECK_THAT(help.output, Contains(sub));
+    for (const char* sub : {"run", "replay", "to-lua", "relax", "export", "report"})
+        CHECK_THAT(help.output, Contains(sub));
     for (const char* sub : {"run", "replay", "to-lua", "relax", "export", "report"}) {
         INFO(sub);
         const Ran r = runCli(std::string(sub) + " --help");
         CHECK(r.exitCode == 0);
         CHECK_THAT(r.output, Contains("Usage"));
     }
-    CHECK_THAT(runCli("run --help").output, Contains("--max-memory") && Contains("--max-instructions") &&
+    CHECK_THAT(runCli("run --help").output, Contains("--max-memory") &&
+                                                Contains("--max-instructions") &&
                                                 Contains("--unsafe") && Contains("--backend"));
     const Ran version = runCli("--version");
     CHECK(version.exitCode == 0);
     CHECK_THAT(version.output, StartsWith("netsculpt "));
-    for (const char* bad : {"", "frobnicate", "run", "run x.lua --bogus", "relax d.netj --backend warp",
-                            "run x.lua --max-memory -3", "report d.netj --json --csv"}) {
+    for (const char* bad :
+         {"", "frobnicate", "run", "run x.lua --bogus", "relax d.netj --backend warp",
+          "run x.lua --max-memory -3", "report d.netj --json --csv"}) {
         INFO(bad);
         const Ran r = runCli(bad);
         CHECK(r.exitCode == 2);
@@ -75,32 +78,41 @@ TEST_CASE("run: exit code 0 with outputs and a journal, 1 with a one-line messag
     CHECK(printedHash(ok.output).size() == 16);
     CHECK(fs::is_regular_file(dir / "out" / "small.netj"));
 
-    const fs::path bad = writeScript(dir, "bad.lua", "local ns = require 'netsculpt'\nns.new():set_rows{rows = 0}\n");
+    const fs::path bad = writeScript(
+        dir, "bad.lua", "local ns = require 'netsculpt'\nns.new():set_rows{rows = 0}\n");
     const Ran failed = runCli("run " + quoted(bad) + " --out " + quoted(dir / "out"));
     CHECK(failed.exitCode == 1);
-    CHECK_THAT(failed.output, StartsWith("netsculpt: error: ") && Contains("bad.lua:2: set_rows: argument 'piece' is missing"));
+    CHECK_THAT(failed.output, StartsWith("netsculpt: error: ") &&
+                                  Contains("bad.lua:2: set_rows: argument 'piece' is missing"));
 
     const Ran missing = runCli("run " + quoted(dir / "none.lua"));
     CHECK(missing.exitCode == 1);
     CHECK_THAT(missing.output, StartsWith("netsculpt: error: there is no script at"));
 
     const fs::path loop = writeScript(dir, "loop.lua", "while true do end\n");
-    const Ran stopped = runCli("run " + quoted(loop) + " --out " + quoted(dir / "out") + " --max-instructions 1e6");
+    const Ran stopped =
+        runCli("run " + quoted(loop) + " --out " + quoted(dir / "out") + " --max-instructions 1e6");
     CHECK(stopped.exitCode == 1);
-    CHECK_THAT(stopped.output, Contains("loop.lua:1: script exceeded its budget of 10^6 instructions"));
+    CHECK_THAT(stopped.output,
+               Contains("loop.lua:1: script exceeded its budget of 10^6 instructions"));
 
-    const fs::path hungry = writeScript(dir, "hungry.lua", "local t = {} for i = 1, 1e9 do t[i] = i end\n");
-    const Ran full = runCli("run " + quoted(hungry) + " --out " + quoted(dir / "out") + " --max-memory 16");
+    const fs::path hungry =
+        writeScript(dir, "hungry.lua", "local t = {} for i = 1, 1e9 do t[i] = i end\n");
+    const Ran full =
+        runCli("run " + quoted(hungry) + " --out " + quoted(dir / "out") + " --max-memory 16");
     CHECK(full.exitCode == 1);
     CHECK_THAT(full.output, Contains("netsculpt: error: script exceeded 16 MiB of memory"));
 
-    const Ran args = runCli("run " + quoted(writeScript(dir, "args.lua", "print(arg[1], arg[2], #arg)")) +
-                            " --out " + quoted(dir / "out") + " -q -- --no-relax two");
+    const Ran args =
+        runCli("run " + quoted(writeScript(dir, "args.lua", "print(arg[1], arg[2], #arg)")) +
+               " --out " + quoted(dir / "out") + " -q -- --no-relax two");
     CHECK(args.exitCode == 0);
     CHECK_THAT(args.output, Contains("--no-relax\ttwo\t2"));
 
-    const Ran unsafe = runCli("run " + quoted(writeScript(dir, "unsafe.lua", "assert(io.popen('echo hi'):read('l') == 'hi')")) +
-                              " --out " + quoted(dir / "out") + " --unsafe");
+    const Ran unsafe = runCli(
+        "run " +
+        quoted(writeScript(dir, "unsafe.lua", "assert(io.popen('echo hi'):read('l') == 'hi')")) +
+        " --out " + quoted(dir / "out") + " --unsafe");
     CHECK(unsafe.exitCode == 0);
     CHECK_THAT(unsafe.output, Contains("--unsafe: the sandbox is off"));
 }
@@ -127,22 +139,26 @@ TEST_CASE("replay, to-lua, relax, export and report on a journal", "[cli]") {
     REQUIRE(end != std::string::npos);
     generated.insert(end, "print('hash ' .. doc:hash())\n");
     const fs::path again = writeScript(dir, "again.lua", generated);
-    const Ran rerun = runCli("run " + quoted(again) + " --out " + quoted(dir / "again") + " -q --no-journal");
+    const Ran rerun =
+        runCli("run " + quoted(again) + " --out " + quoted(dir / "again") + " -q --no-journal");
     CHECK(rerun.exitCode == 0);
     CHECK(printedHash(rerun.output) == hash); // the generated script builds the same sculpture
 
-    const Ran relax = runCli("relax " + quoted(journal) + " --tolerance 1e-2 --max-seconds 20 --out " + quoted(dir / "relaxed"));
+    const Ran relax = runCli("relax " + quoted(journal) +
+                             " --tolerance 1e-2 --max-seconds 20 --out " + quoted(dir / "relaxed"));
     CHECK(relax.exitCode == 0);
     CHECK_THAT(relax.output, Contains("converged"));
     const fs::path snapshot = dir / "relaxed" / "small.nets";
     CHECK(fs::is_regular_file(snapshot));
 
-    const Ran exported = runCli("export " + quoted(snapshot) + " " + quoted(dir / "x" / "knots.csv") + " " +
-                                quoted(dir / "x" / "view.svg") + " --view top");
+    const Ran exported =
+        runCli("export " + quoted(snapshot) + " " + quoted(dir / "x" / "knots.csv") + " " +
+               quoted(dir / "x" / "view.svg") + " --view top");
     CHECK(exported.exitCode == 0);
     CHECK(fs::is_regular_file(dir / "x" / "knots.csv"));
     CHECK(fs::is_regular_file(dir / "x" / "view.svg"));
-    CHECK(runCli("export " + quoted(snapshot) + " " + quoted(dir / "x" / "knots.docx")).exitCode == 1);
+    CHECK(runCli("export " + quoted(snapshot) + " " + quoted(dir / "x" / "knots.docx")).exitCode ==
+          1);
 
     const Ran markdown = runCli("report " + quoted(snapshot));
     CHECK(markdown.exitCode == 0);

@@ -40,9 +40,10 @@ std::vector<Knot> readKnots(const fs::path& file) {
     while (std::getline(in, line)) {
         std::stringstream fields(line);
         std::string f[7];
-        for (std::string& field : f) std::getline(fields, field, ',');
-        Knot k{std::stoi(f[0]), std::stoi(f[1]), std::stoi(f[2]), std::stod(f[3]), std::stod(f[4]), std::stod(f[5]),
-               f[6] == "1", f[3] + "," + f[4] + "," + f[5]};
+        for (std::string& field : f)
+            std::getline(fields, field, ',');
+        Knot k{std::stoi(f[0]), std::stoi(f[1]), std::stoi(f[2]), std::stod(f[3]),
+               std::stod(f[4]), std::stod(f[5]), f[6] == "1",     f[3] + "," + f[4] + "," + f[5]};
         knots.push_back(k);
     }
     return knots;
@@ -58,7 +59,8 @@ json readJson(const fs::path& file) {
 fs::path runGallery(const std::string& script, const std::string& extra = "") {
     const fs::path out = freshFolder("gallery-" + fs::path(script).stem().string());
     const fs::path file = fs::path(NETSCULPT_SCRIPTS_DIR) / script;
-    const Ran ran = runCli("run " + quoted(file) + " --out " + quoted(out) + " --quiet" + extra, "NETSCULPT_QUICK=1");
+    const Ran ran = runCli("run " + quoted(file) + " --out " + quoted(out) + " --quiet" + extra,
+                           "NETSCULPT_QUICK=1");
     INFO(ran.output);
     REQUIRE(ran.exitCode == 0);
     return out;
@@ -66,7 +68,8 @@ fs::path runGallery(const std::string& script, const std::string& extra = "") {
 
 std::vector<Knot> ofPiece(const std::vector<Knot>& knots, int piece) {
     std::vector<Knot> out;
-    std::copy_if(knots.begin(), knots.end(), std::back_inserter(out), [&](const Knot& k) { return k.piece == piece; });
+    std::copy_if(knots.begin(), knots.end(), std::back_inserter(out),
+                 [&](const Knot& k) { return k.piece == piece; });
     return out;
 }
 
@@ -77,21 +80,24 @@ int countIf(const std::vector<Knot>& knots, bool (*pred)(const Knot&)) {
 /// rows x columns of a piece's knots in the CSV (max index + 1), checking the grid is complete.
 std::pair<int, int> gridOf(const std::vector<Knot>& knots) {
     int rows = 0, columns = 0;
-    for (const Knot& k : knots) rows = std::max(rows, k.row + 1), columns = std::max(columns, k.column + 1);
+    for (const Knot& k : knots)
+        rows = std::max(rows, k.row + 1), columns = std::max(columns, k.column + 1);
     CHECK(int(knots.size()) == rows * columns);
     return {rows, columns};
 }
 
 const json& pieceNamed(const json& report, const std::string& name) {
     for (const json& p : report["pieces"])
-        if (p["name"] == name) return p;
+        if (p["name"] == name)
+            return p;
     FAIL("no piece named " << name);
     throw std::logic_error("unreachable");
 }
 
 double minZ(const std::vector<Knot>& knots) {
     double z = INFINITY;
-    for (const Knot& k : knots) z = std::min(z, k.z);
+    for (const Knot& k : knots)
+        z = std::min(z, k.z);
     return z;
 }
 
@@ -99,7 +105,8 @@ double minZ(const std::vector<Knot>& knots) {
 
 TEST_CASE("default.lua: the Quick start sculpture", "[gallery]") {
     const fs::path out = runGallery("default.lua");
-    for (const char* file : {"knots.csv", "bars.obj", "sculpture.glb", "view.png", "report.json", "report.md", "default.netj"}) {
+    for (const char* file : {"knots.csv", "bars.obj", "sculpture.glb", "view.png", "report.json",
+                             "report.md", "default.netj"}) {
         INFO(file);
         CHECK(fs::file_size(out / file) > 100);
     }
@@ -116,12 +123,15 @@ TEST_CASE("fig01: two imported closed rails and a tube between them", "[gallery]
     const fs::path out = runGallery("paper/fig01_two_rails.lua");
     const json report = readJson(out / "report.json");
     REQUIRE(report["rails"].size() == 2);
-    for (const json& rail : report["rails"]) CHECK(rail["closed"] == true);
+    for (const json& rail : report["rails"])
+        CHECK(rail["closed"] == true);
     CHECK(report["rails"][0]["length"].get<double>() == Approx(2 * M_PI * 1.5).epsilon(1e-4));
     const auto knots = readKnots(out / "knots.csv");
     CHECK(gridOf(knots) == std::pair{16, 40});
     CHECK(countIf(knots, [](const Knot& k) { return k.fixed; }) == 80);
-    CHECK(countIf(knots, [](const Knot& k) { return k.row == 15 && k.fixed && std::abs(k.z - 2.0) < 1e-9; }) == 40);
+    CHECK(countIf(knots, [](const Knot& k) {
+              return k.row == 15 && k.fixed && std::abs(k.z - 2.0) < 1e-9;
+          }) == 40);
     CHECK(fs::is_regular_file(out / "rails.png"));
 }
 
@@ -133,9 +143,11 @@ TEST_CASE("fig03: a piece below a piece shares the parent's last row", "[gallery
     CHECK(gridOf(child) == std::pair{8, 36});
     std::map<int, std::string> lastRow;
     for (const Knot& k : parent)
-        if (k.row == 9) lastRow[k.column] = k.position;
+        if (k.row == 9)
+            lastRow[k.column] = k.position;
     for (const Knot& k : child)
-        if (k.row == 0) CHECK(k.position == lastRow.at(k.column));
+        if (k.row == 0)
+            CHECK(k.position == lastRow.at(k.column));
     CHECK(readJson(out / "report.json")["knots"] == 36 * 10 + 36 * 8 - 36);
 }
 
@@ -146,11 +158,14 @@ TEST_CASE("fig04: a split changes ownership, never the net", "[gallery]") {
     CHECK(gridOf(ofPiece(after, 1)) == std::pair{12, 13});
     CHECK(gridOf(ofPiece(after, 2)) == std::pair{12, 37});
     std::set<std::string> a, b;
-    for (const Knot& k : before) a.insert(k.position);
-    for (const Knot& k : after) b.insert(k.position);
+    for (const Knot& k : before)
+        a.insert(k.position);
+    for (const Knot& k : after)
+        b.insert(k.position);
     CHECK(a == b);
     const json report = readJson(out / "report.json");
-    for (const json& p : report["pieces"]) CHECK(p["closed"] == false);
+    for (const json& p : report["pieces"])
+        CHECK(p["closed"] == false);
 }
 
 TEST_CASE("fig05: rows", "[gallery]") {
@@ -174,13 +189,15 @@ TEST_CASE("fig06: columns", "[gallery]") {
         CHECK(gridOf(knots) == std::pair{10, columns});
         std::vector<Knot> top;
         for (const Knot& k : knots)
-            if (k.row == 0) top.push_back(k);
+            if (k.row == 0)
+                top.push_back(k);
         double perimeter = 0;
         for (std::size_t i = 0; i < top.size(); ++i) {
             const Knot &p = top[i], &q = top[(i + 1) % top.size()];
             perimeter += std::hypot(q.x - p.x, q.y - p.y, q.z - p.z);
         }
-        CHECK(perimeter / columns == Approx(ringLength / columns).epsilon(1e-2)); // chords cut the corners
+        CHECK(perimeter / columns ==
+              Approx(ringLength / columns).epsilon(1e-2)); // chords cut the corners
     }
 }
 
@@ -188,7 +205,8 @@ TEST_CASE("fig07: gears multiply the columns", "[gallery]") {
     const fs::path out = runGallery("paper/fig07_gears.lua");
     const json report = readJson(out / "report.json");
     const auto knots = readKnots(out / "knots.csv");
-    const std::pair<const char*, int> expected[] = {{"gear 3", 72}, {"gear 2", 48}, {"gear 1", 24}, {"gear 1/2", 12}, {"gear 1/3", 8}};
+    const std::pair<const char*, int> expected[] = {
+        {"gear 3", 72}, {"gear 2", 48}, {"gear 1", 24}, {"gear 1/2", 12}, {"gear 1/3", 8}};
     for (const auto& [name, columns] : expected) {
         INFO(name);
         const json& child = pieceNamed(report, name);
@@ -200,19 +218,22 @@ TEST_CASE("fig07: gears multiply the columns", "[gallery]") {
 TEST_CASE("fig08: bar length graded by row", "[gallery]") {
     const fs::path out = runGallery("paper/fig08_bar_length.lua");
     const json report = readJson(out / "report.json");
-    for (double l : pieceNamed(report, "constant")["bar_lengths"]) CHECK(l == 0.2);
+    for (double l : pieceNamed(report, "constant")["bar_lengths"])
+        CHECK(l == 0.2);
     const json& graded = pieceNamed(report, "graded by row");
     CHECK(graded["bar_axis"] == "row");
     const auto& lengths = graded["bar_lengths"];
     REQUIRE(lengths.size() == 12);
-    for (std::size_t row = 0; row < 12; ++row) CHECK(lengths[row].get<double>() == Approx(0.12 + 0.2 * double(row) / 11));
+    for (std::size_t row = 0; row < 12; ++row)
+        CHECK(lengths[row].get<double>() == Approx(0.12 + 0.2 * double(row) / 11));
 }
 
 TEST_CASE("fig09: equal bar lengths at every seam", "[gallery]") {
     const fs::path out = runGallery("paper/fig09_seams.lua");
     const json report = readJson(out / "report.json");
     std::map<int, json> byId;
-    for (const json& p : report["pieces"]) byId[p["id"]] = p;
+    for (const json& p : report["pieces"])
+        byId[p["id"]] = p;
     int seams = 0;
     for (const auto& [id, p] : byId)
         for (const json& seam : p["seams"])
@@ -234,11 +255,13 @@ TEST_CASE("fig10: before and after relaxation", "[gallery]") {
     CHECK(after["relaxed"] == true);
     CHECK(after["residual"].get<double>() < 1e-4);
     const double weight = after["total_weight"];
-    CHECK(after["force_balance"]["reaction_sum"]["z"].get<double>() == Approx(weight).epsilon(1e-3));
+    CHECK(after["force_balance"]["reaction_sum"]["z"].get<double>() ==
+          Approx(weight).epsilon(1e-3));
     const auto a = readKnots(out / "before.csv"), b = readKnots(out / "after.csv");
     REQUIRE(a.size() == b.size());
     double moved = 0;
-    for (std::size_t i = 0; i < a.size(); ++i) moved = std::max(moved, std::hypot(a[i].x - b[i].x, a[i].y - b[i].y, a[i].z - b[i].z));
+    for (std::size_t i = 0; i < a.size(); ++i)
+        moved = std::max(moved, std::hypot(a[i].x - b[i].x, a[i].y - b[i].y, a[i].z - b[i].z));
     CHECK(moved > 0.05);
     CHECK(fs::is_regular_file(out / "before.png"));
     CHECK(fs::is_regular_file(out / "after.png"));
@@ -253,7 +276,8 @@ TEST_CASE("fig11: last rows connected to rails", "[gallery]") {
         CHECK(countIf(mine, [](const Knot& k) { return k.fixed; }) == 60);
     }
     const json report = readJson(out / "report.json");
-    for (const json& rail : report["rails"]) CHECK(rail["attachments"] == 30);
+    for (const json& rail : report["rails"])
+        CHECK(rail["attachments"] == 30);
     const json& twisted = pieceNamed(report, "twisted");
     CHECK(twisted["bottom"]["reverse"] == true);
     CHECK(twisted["bottom"]["at"].get<double>() == Approx(1.0 / 6));
@@ -268,13 +292,15 @@ TEST_CASE("installation.lua: an installation of 50,000+ knots", "[gallery]") {
     int seams = 0, gears = 0;
     for (const json& p : report["pieces"]) {
         seams += int(p["seams"].size());
-        if (p["top"]["kind"] == "piece" && p["top"]["gear"] != "1") ++gears;
+        if (p["top"]["kind"] == "piece" && p["top"]["gear"] != "1")
+            ++gears;
     }
     CHECK(seams >= 6); // three seams, seen from both sides
     CHECK(gears >= 2);
     std::set<long> heights;
     for (const Knot& k : readKnots(out / "knots.csv"))
-        if (k.fixed && k.row == 0) heights.insert(std::lround(k.z));
+        if (k.fixed && k.row == 0)
+            heights.insert(std::lround(k.z));
     CHECK(heights.size() >= 3);
     CHECK(report["relaxed"] == false); // CI skips the relaxation
 }

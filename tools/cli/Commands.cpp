@@ -23,21 +23,24 @@ namespace {
 void createFolder(const fs::path& folder) {
     std::error_code error;
     fs::create_directories(folder, error);
-    if (error || !fs::is_directory(folder)) throw UserError("cannot create the output folder " + folder.string() +
-                                                            (error ? ": " + error.message() : std::string()));
+    if (error || !fs::is_directory(folder))
+        throw UserError("cannot create the output folder " + folder.string() +
+                        (error ? ": " + error.message() : std::string()));
 }
 
 Document openDocument(const fs::path& path, Verbosity verbosity) {
     std::vector<std::string> warnings;
     Document doc = lua::openReadOnly(path, &warnings);
     if (verbosity != Verbosity::Quiet)
-        for (const std::string& w : warnings) std::cerr << "netsculpt: warning: " << w << "\n";
+        for (const std::string& w : warnings)
+            std::cerr << "netsculpt: warning: " << w << "\n";
     return doc;
 }
 
 std::uint64_t wholeCount(double value, const char* option) {
     if (!(value >= 0) || value != std::floor(value) || value > 1.8e19)
-        throw UserError(std::string(option) + " must be a whole number >= 0, got " + formatNumber(value));
+        throw UserError(std::string(option) + " must be a whole number >= 0, got " +
+                        formatNumber(value));
     return std::uint64_t(value);
 }
 
@@ -51,8 +54,9 @@ std::string hashText(std::uint64_t hash) {
 std::string summary(const Document& doc) {
     const auto& s = doc.sculpture();
     const auto& system = doc.compiled().system;
-    return std::to_string(s.rails.size()) + " rails, " + std::to_string(s.pieces.size()) + " pieces, " +
-           std::to_string(system.knotCount()) + " knots, " + std::to_string(system.barCount()) + " bars";
+    return std::to_string(s.rails.size()) + " rails, " + std::to_string(s.pieces.size()) +
+           " pieces, " + std::to_string(system.knotCount()) + " knots, " +
+           std::to_string(system.barCount()) + " bars";
 }
 
 lua::ScriptOptions scriptOptions(const RunArgs& a, ProgressLine& progress) {
@@ -60,13 +64,15 @@ lua::ScriptOptions scriptOptions(const RunArgs& a, ProgressLine& progress) {
     o.outputDir = a.out;
     o.unsafe = a.unsafe;
     if (!(a.maxMemoryMiB >= 0) || !std::isfinite(a.maxMemoryMiB))
-        throw UserError("--max-memory must be a number of MiB >= 0, got " + formatNumber(a.maxMemoryMiB));
+        throw UserError("--max-memory must be a number of MiB >= 0, got " +
+                        formatNumber(a.maxMemoryMiB));
     o.maxMemory = std::size_t(std::llround(a.maxMemoryMiB * double(1 << 20)));
     o.maxInstructions = wholeCount(a.maxInstructions, "--max-instructions");
     o.backend = a.backend;
     o.journal = a.journal;
     o.args = a.args;
-    if (progress.enabled()) o.relaxProgress = [&progress](const RelaxProgress& p) { progress.update(p); };
+    if (progress.enabled())
+        o.relaxProgress = [&progress](const RelaxProgress& p) { progress.update(p); };
     o.relaxFinished = [&progress](const RelaxResult& r) { progress.finish(r); };
     return o;
 }
@@ -75,42 +81,50 @@ lua::ScriptOptions scriptOptions(const RunArgs& a, ProgressLine& progress) {
 
 int runScript(const RunArgs& a, Verbosity verbosity) {
     std::error_code error;
-    if (!fs::is_regular_file(a.script, error)) throw UserError("there is no script at " + a.script.string());
+    if (!fs::is_regular_file(a.script, error))
+        throw UserError("there is no script at " + a.script.string());
     createFolder(a.out);
     if (a.unsafe)
-        std::fprintf(stderr, "netsculpt: --unsafe: the sandbox is off: %s may run programs, load C modules and "
-                             "read and write any file\n",
-                     a.script.string().c_str());
+        std::fprintf(
+            stderr,
+            "netsculpt: --unsafe: the sandbox is off: %s may run programs, load C modules and "
+            "read and write any file\n",
+            a.script.string().c_str());
     ProgressLine progress(verbosity);
     const lua::ScriptOptions options = scriptOptions(a, progress);
     const auto start = std::chrono::steady_clock::now();
     const lua::ScriptResult result = lua::runScriptFile(a.script, options);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!result.ok) {
         std::cerr << "netsculpt: error: " << result.error << "\n";
-        if (verbosity == Verbosity::Verbose && !result.traceback.empty()) std::cerr << result.traceback << "\n";
+        if (verbosity == Verbosity::Verbose && !result.traceback.empty())
+            std::cerr << result.traceback << "\n";
         return 1;
     }
     if (verbosity != Verbosity::Quiet) {
-        std::fprintf(stderr, "netsculpt: ran %s in %.1f s; outputs in %s\n", a.script.string().c_str(), seconds,
-                     a.out.string().c_str());
+        std::fprintf(stderr, "netsculpt: ran %s in %.1f s; outputs in %s\n",
+                     a.script.string().c_str(), seconds, a.out.string().c_str());
         for (const fs::path& journal : result.journals)
             std::fprintf(stderr, "netsculpt: journal %s\n", journal.string().c_str());
     }
     if (verbosity == Verbosity::Verbose)
         std::fprintf(stderr, "netsculpt: about %llu Lua instructions, peak Lua memory %.1f MiB\n",
-                     static_cast<unsigned long long>(result.instructions), double(result.peakMemory) / (1 << 20));
+                     static_cast<unsigned long long>(result.instructions),
+                     double(result.peakMemory) / (1 << 20));
     return 0;
 }
 
 int replayJournal(const fs::path& journal, const fs::path& out, Verbosity verbosity) {
     Document doc = openDocument(journal, verbosity);
-    std::cout << journal.string() << ": " << summary(doc) << "; hash " << hashText(doc.hash()) << "\n";
+    std::cout << journal.string() << ": " << summary(doc) << "; hash " << hashText(doc.hash())
+              << "\n";
     if (!out.empty()) {
         createFolder(out);
         const fs::path copy = out / (journal.stem().string() + ".netj");
         doc.attachJournal(copy);
-        if (verbosity != Verbosity::Quiet) std::cerr << "netsculpt: wrote " << copy.string() << "\n";
+        if (verbosity != Verbosity::Quiet)
+            std::cerr << "netsculpt: wrote " << copy.string() << "\n";
     }
     return 0;
 }
@@ -130,13 +144,15 @@ int relaxDocument(const RelaxArgs& a, Verbosity verbosity) {
     options.solver.maxSeconds = a.maxSeconds;
     options.solver.maxSteps = a.maxSteps;
     ProgressLine progress(verbosity);
-    if (progress.enabled()) options.solver.progress = [&progress](const RelaxProgress& p) { progress.update(p); };
+    if (progress.enabled())
+        options.solver.progress = [&progress](const RelaxProgress& p) { progress.update(p); };
     const RelaxResult result = doc.relax(options);
     progress.finish(result);
     const fs::path snapshot = a.out / (a.document.stem().string() + ".nets");
     doc.saveSnapshot(snapshot);
     std::cout << a.document.string() << ": " << describeRelaxResult(result) << "\n";
-    if (verbosity != Verbosity::Quiet) std::cerr << "netsculpt: wrote " << snapshot.string() << "\n";
+    if (verbosity != Verbosity::Quiet)
+        std::cerr << "netsculpt: wrote " << snapshot.string() << "\n";
     return 0;
 }
 
@@ -149,9 +165,11 @@ int exportDocument(const ExportArgs& a, Verbosity verbosity) {
     options.height = a.height;
     options.view = a.view;
     for (const fs::path& file : a.files) {
-        if (file.has_parent_path()) createFolder(file.parent_path());
+        if (file.has_parent_path())
+            createFolder(file.parent_path());
         exportFile(doc, file, options);
-        if (verbosity != Verbosity::Quiet) std::cerr << "netsculpt: wrote " << file.string() << "\n";
+        if (verbosity != Verbosity::Quiet)
+            std::cerr << "netsculpt: wrote " << file.string() << "\n";
     }
     return 0;
 }
@@ -160,10 +178,18 @@ int reportDocument(const fs::path& document, ReportFormat format) {
     const Document doc = openDocument(document, Verbosity::Normal);
     const nlohmann::json report = buildReport(doc);
     switch (format) {
-    case ReportFormat::Markdown: std::cout << reportMarkdown(report); break;
-    case ReportFormat::Json: std::cout << report.dump(2) << "\n"; break;
-    case ReportFormat::PiecesCsv: std::cout << reportPiecesCsv(report); break;
-    case ReportFormat::AttachmentsCsv: std::cout << reportAttachmentsCsv(report); break;
+    case ReportFormat::Markdown:
+        std::cout << reportMarkdown(report);
+        break;
+    case ReportFormat::Json:
+        std::cout << report.dump(2) << "\n";
+        break;
+    case ReportFormat::PiecesCsv:
+        std::cout << reportPiecesCsv(report);
+        break;
+    case ReportFormat::AttachmentsCsv:
+        std::cout << reportAttachmentsCsv(report);
+        break;
     }
     return 0;
 }

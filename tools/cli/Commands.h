@@ -16,14 +16,15 @@ struct RunArgs {
     std::vector<std::string> args;   ///< the script's arguments (arg[1..])
     std::filesystem::path out = "."; ///< the output folder (created when missing)
     bool unsafe = false;
-    double maxMemoryMiB = 512;       ///< 0 = no limit
-    double maxInstructions = 1e9;    ///< 0 = no budget
-    std::string backend;             ///< overrides every doc:relax; empty = the script's
+    double maxMemoryMiB = 512;    ///< 0 = no limit
+    double maxInstructions = 1e9; ///< 0 = no budget
+    std::string backend;          ///< overrides every doc:relax; empty = the script's
     bool journal = true;
 };
 int runScript(const RunArgs& a, Verbosity verbosity);
 
-int replayJournal(const std::filesystem::path& journal, const std::filesystem::path& out, Verbosity verbosity);
+int replayJournal(const std::filesystem::path& journal, const std::filesystem::path& out,
+                  Verbosity verbosity);
 int journalToLua(const std::filesystem::path& journal);
 
 struct RelaxArgs {

@@ -9,8 +9,10 @@ namespace {
 
 std::string seconds(double s) {
     char text[32];
-    if (s < 60) std::snprintf(text, sizeof text, "%.1f s", s);
-    else std::snprintf(text, sizeof text, "%d min %02d s", int(s / 60), int(s) % 60);
+    if (s < 60)
+        std::snprintf(text, sizeof text, "%.1f s", s);
+    else
+        std::snprintf(text, sizeof text, "%d min %02d s", int(s / 60), int(s) % 60);
     return text;
 }
 
@@ -21,9 +23,11 @@ ProgressLine::ProgressLine(Verbosity verbosity)
       verbose_(verbosity == Verbosity::Verbose) {}
 
 void ProgressLine::update(const RelaxProgress& p) {
-    if (!enabled_) return;
+    if (!enabled_)
+        return;
     char line[160];
-    const std::string left = p.estimatedSecondsLeft >= 0 ? ", about " + seconds(p.estimatedSecondsLeft) + " left" : "";
+    const std::string left =
+        p.estimatedSecondsLeft >= 0 ? ", about " + seconds(p.estimatedSecondsLeft) + " left" : "";
     std::snprintf(line, sizeof line, "relaxing: residual %.2e, %lld steps, %s%s", p.residual,
                   static_cast<long long>(p.steps), seconds(p.seconds).c_str(), left.c_str());
     std::fprintf(stderr, "\r%s\033[K", line);
@@ -32,7 +36,8 @@ void ProgressLine::update(const RelaxProgress& p) {
 }
 
 void ProgressLine::clear() {
-    if (!shown_) return;
+    if (!shown_)
+        return;
     std::fprintf(stderr, "\r\033[K");
     std::fflush(stderr);
     shown_ = false;
@@ -40,15 +45,17 @@ void ProgressLine::clear() {
 
 void ProgressLine::finish(const RelaxResult& result) {
     clear();
-    if (verbose_) std::fprintf(stderr, "netsculpt: relaxation %s\n", describeRelaxResult(result).c_str());
+    if (verbose_)
+        std::fprintf(stderr, "netsculpt: relaxation %s\n", describeRelaxResult(result).c_str());
 }
 
 std::string describeRelaxResult(const RelaxResult& r) {
     char text[200];
     const char* how = r.converged ? "converged" : "stopped";
     std::snprintf(text, sizeof text, "%s%s%s%s after %lld steps, %s, residual %.3g (%s)", how,
-                  r.converged ? "" : " (", r.converged ? "" : r.stopReason.c_str(), r.converged ? "" : ")",
-                  static_cast<long long>(r.steps), seconds(r.seconds).c_str(), r.residual, r.backend.c_str());
+                  r.converged ? "" : " (", r.converged ? "" : r.stopReason.c_str(),
+                  r.converged ? "" : ")", static_cast<long long>(r.steps),
+                  seconds(r.seconds).c_str(), r.residual, r.backend.c_str());
     return text;
 }
 

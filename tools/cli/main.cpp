@@ -35,75 +35,119 @@ struct Options {
 void addRun(CLI::App& app, Options& o) {
     CLI::App* run = app.add_subcommand("run", "Run a sculpture script (sandboxed unless --unsafe)");
     run->add_option("script", o.run.script, "The Lua script")->required();
-    run->add_option("args", o.run.args, "Arguments for the script (its global `arg`); put -- before ones starting with -");
-    run->add_option("--out,-o", o.run.out, "Output folder: where doc:save/doc:export write and the journal goes")
+    run->add_option(
+        "args", o.run.args,
+        "Arguments for the script (its global `arg`); put -- before ones starting with -");
+    run->add_option("--out,-o", o.run.out,
+                    "Output folder: where doc:save/doc:export write and the journal goes")
         ->capture_default_str();
     run->add_flag("--unsafe", o.run.unsafe, "Lift the sandbox (file, process and C module access)");
-    run->add_option("--max-memory", o.run.maxMemoryMiB, "Memory limit of the script's Lua state, MiB (0 = none)")
-        ->capture_default_str()->check(CLI::NonNegativeNumber);
-    run->add_option("--max-instructions", o.run.maxInstructions, "Lua instruction budget (0 = none)")
-        ->capture_default_str()->check(CLI::NonNegativeNumber);
-    run->add_option("--backend", o.run.backend, "Relax every doc:relax with this backend (overrides the script)")
+    run->add_option("--max-memory", o.run.maxMemoryMiB,
+                    "Memory limit of the script's Lua state, MiB (0 = none)")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
+    run->add_option("--max-instructions", o.run.maxInstructions,
+                    "Lua instruction budget (0 = none)")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
+    run->add_option("--backend", o.run.backend,
+                    "Relax every doc:relax with this backend (overrides the script)")
         ->check(CLI::IsMember(relaxerNames()));
-    run->add_flag("!--no-journal", o.run.journal, "Do not journal the session to OUT/<script name>.netj");
+    run->add_flag("!--no-journal", o.run.journal,
+                  "Do not journal the session to OUT/<script name>.netj");
 }
 
 void addJournalCommands(CLI::App& app, Options& o) {
-    CLI::App* replay = app.add_subcommand("replay", "Replay a journal, check it and print the sculpture's hash");
+    CLI::App* replay =
+        app.add_subcommand("replay", "Replay a journal, check it and print the sculpture's hash");
     replay->add_option("journal", o.journal, "The journal (.netj)")->required();
     replay->add_option("--out,-o", o.replayOut, "Write the replayed journal to OUT/<name>.netj");
-    CLI::App* toLua = app.add_subcommand("to-lua", "Print a journal (or snapshot) as an equivalent Lua script");
+    CLI::App* toLua =
+        app.add_subcommand("to-lua", "Print a journal (or snapshot) as an equivalent Lua script");
     toLua->add_option("journal", o.journal, "The journal (.netj) or snapshot (.nets)")->required();
 }
 
 void addRelax(CLI::App& app, Options& o) {
-    CLI::App* relax = app.add_subcommand("relax", "Relax a sculpture and save the shape as OUT/<name>.nets");
-    relax->add_option("document", o.relax.document, "A journal (.netj) or snapshot (.nets)")->required();
+    CLI::App* relax =
+        app.add_subcommand("relax", "Relax a sculpture and save the shape as OUT/<name>.nets");
+    relax->add_option("document", o.relax.document, "A journal (.netj) or snapshot (.nets)")
+        ->required();
     relax->add_option("--backend", o.relax.backend, "Relaxation backend")
-        ->capture_default_str()->check(CLI::IsMember(relaxerNames()));
+        ->capture_default_str()
+        ->check(CLI::IsMember(relaxerNames()));
     relax->add_option("--tolerance", o.relax.tolerance, "Converged when max |F|/(m|g|) is below it")
-        ->capture_default_str()->check(CLI::PositiveNumber);
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
     relax->add_option("--max-seconds", o.relax.maxSeconds, "Wall-time limit, s")
-        ->capture_default_str()->check(CLI::PositiveNumber);
-    relax->add_option("--max-steps", o.relax.maxSteps, "Step limit (-1 = none)")->capture_default_str();
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
+    relax->add_option("--max-steps", o.relax.maxSteps, "Step limit (-1 = none)")
+        ->capture_default_str();
     relax->add_option("--out,-o", o.relax.out, "Output folder")->capture_default_str();
 }
 
 void addExport(CLI::App& app, Options& o) {
-    CLI::App* exporting = app.add_subcommand("export", "Export a sculpture's shape (format by extension)");
-    exporting->add_option("document", o.exporting.document, "A journal (.netj) or snapshot (.nets)")->required();
-    exporting->add_option("files", o.exporting.files, "Files to write: .csv .obj .ply .glb .json .svg .png")
+    CLI::App* exporting =
+        app.add_subcommand("export", "Export a sculpture's shape (format by extension)");
+    exporting->add_option("document", o.exporting.document, "A journal (.netj) or snapshot (.nets)")
+        ->required();
+    exporting
+        ->add_option("files", o.exporting.files,
+                     "Files to write: .csv .obj .ply .glb .json .svg .png")
         ->required();
     exporting->add_option("--colour-by", o.exporting.colourBy, "Colour bars by")
-        ->capture_default_str()->check(CLI::IsMember({"piece", "tension"}));
-    exporting->add_option("--tube-radius", o.exporting.tubeRadius, "obj/ply: bars as tubes of this radius, m")
-        ->capture_default_str()->check(CLI::NonNegativeNumber);
-    exporting->add_option("--width", o.exporting.width, "png width, pixels")->capture_default_str()->check(CLI::Range(16, 16384));
-    exporting->add_option("--height", o.exporting.height, "png height, pixels")->capture_default_str()->check(CLI::Range(16, 16384));
+        ->capture_default_str()
+        ->check(CLI::IsMember({"piece", "tension"}));
+    exporting
+        ->add_option("--tube-radius", o.exporting.tubeRadius,
+                     "obj/ply: bars as tubes of this radius, m")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
+    exporting->add_option("--width", o.exporting.width, "png width, pixels")
+        ->capture_default_str()
+        ->check(CLI::Range(16, 16384));
+    exporting->add_option("--height", o.exporting.height, "png height, pixels")
+        ->capture_default_str()
+        ->check(CLI::Range(16, 16384));
     exporting->add_option("--view", o.exporting.view, "svg/png view")
-        ->capture_default_str()->check(CLI::IsMember({"top", "side", "front", "perspective", "all"}));
+        ->capture_default_str()
+        ->check(CLI::IsMember({"top", "side", "front", "perspective", "all"}));
 }
 
 void addReport(CLI::App& app, Options& o) {
-    CLI::App* report = app.add_subcommand("report", "Print the fabrication and load report (Markdown by default)");
-    report->add_option("document", o.reportDocument, "A journal (.netj) or snapshot (.nets)")->required();
+    CLI::App* report =
+        app.add_subcommand("report", "Print the fabrication and load report (Markdown by default)");
+    report->add_option("document", o.reportDocument, "A journal (.netj) or snapshot (.nets)")
+        ->required();
     auto* json = report->add_flag("--json", o.reportJson, "Print the report as JSON");
     report->add_option("--csv", o.reportCsv, "Print a table as CSV: pieces or attachments")
-        ->expected(0, 1)->default_str("pieces")->check(CLI::IsMember({"pieces", "attachments"}))->excludes(json);
+        ->expected(0, 1)
+        ->default_str("pieces")
+        ->check(CLI::IsMember({"pieces", "attachments"}))
+        ->excludes(json);
 }
 
 int dispatch(const CLI::App& app, const Options& o) {
-    const Verbosity verbosity = o.quiet ? Verbosity::Quiet : o.verbose ? Verbosity::Verbose : Verbosity::Normal;
-    if (app.got_subcommand("run")) return runScript(o.run, verbosity);
-    if (app.got_subcommand("replay")) return replayJournal(o.journal, o.replayOut, verbosity);
-    if (app.got_subcommand("to-lua")) return journalToLua(o.journal);
-    if (app.got_subcommand("relax")) return relaxDocument(o.relax, verbosity);
-    if (app.got_subcommand("export")) return exportDocument(o.exporting, verbosity);
+    const Verbosity verbosity = o.quiet     ? Verbosity::Quiet
+                                : o.verbose ? Verbosity::Verbose
+                                            : Verbosity::Normal;
+    if (app.got_subcommand("run"))
+        return runScript(o.run, verbosity);
+    if (app.got_subcommand("replay"))
+        return replayJournal(o.journal, o.replayOut, verbosity);
+    if (app.got_subcommand("to-lua"))
+        return journalToLua(o.journal);
+    if (app.got_subcommand("relax"))
+        return relaxDocument(o.relax, verbosity);
+    if (app.got_subcommand("export"))
+        return exportDocument(o.exporting, verbosity);
     const CLI::App* report = app.get_subcommand("report");
     ReportFormat format = ReportFormat::Markdown;
-    if (o.reportJson) format = ReportFormat::Json;
-    else if (report->count("--csv") > 0) format = o.reportCsv == "attachments" ? ReportFormat::AttachmentsCsv
-                                                                               : ReportFormat::PiecesCsv;
+    if (o.reportJson)
+        format = ReportFormat::Json;
+    else if (report->count("--csv") > 0)
+        format =
+            o.reportCsv == "attachments" ? ReportFormat::AttachmentsCsv : ReportFormat::PiecesCsv;
     return reportDocument(o.reportDocument, format);
 }
 
@@ -131,7 +175,8 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        std::cerr << "netsculpt: error: " << e.what() << "\nRun with --help for more information.\n";
+        std::cerr << "netsculpt: error: " << e.what()
+                  << "\nRun with --help for more information.\n";
         return 2;
     }
     try {

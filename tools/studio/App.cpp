@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
 #include <thread>
@@ -89,10 +90,20 @@ void App::initWindow() {
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-    glfwWindowHint(GLFW_SAMPLES, options_.samples);
-    window_ = glfwCreateWindow(options_.width, options_.height, "netsculpt studio", nullptr, nullptr);
-    if (!window_) throw std::runtime_error("cannot open an OpenGL 3.3 core window");
-    glfwMakeContextCurrent(window_);
+    // Multisampling: 4x on a GPU; off on a software renderer (llvmpipe), where it costs 4x the
+    // fill rate, unless --samples asks for it.
+    for (int attempt = 0; attempt < 2 && !window_; ++attempt) {
+        glfwWindowHint(GLFW_SAMPLES, options_.samples >= 0 ? options_.samples : attempt == 0 ? 4 : 0);
+        window_ = glfwCreateWindow(options_.width, options_.height, "netsculpt studio", nullptr, nullptr);
+        if (!window_) throw std::runtime_error("cannot open an OpenGL 3.3 core window");
+        glfwMakeContextCurrent(window_);
+        const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+        const bool software = renderer && (std::strstr(renderer, "llvmpipe") || std::strstr(renderer, "softpipe"));
+        if (attempt == 0 && software && options_.samples < 0) {
+            glfwDestroyWindow(window_);
+            window_ = nullptr;
+        }
+    }
     glfwSwapInterval(options_.vsync ? 1 : 0);
     glfwSetWindowUserPointer(window_, this);
     // Ours first: ImGui's backend chains to them after updating its own state.

@@ -5,6 +5,7 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 
@@ -199,7 +200,7 @@ void Panels::drawSolver(App& app) {
         }
         const auto& history = app.residualHistory();
         if (!history.empty())
-            ImGui::PlotLines("##residual", history.data(), int(history.size()), 0, "log10 residual", -7.0f, 1.0f,
+            ImGui::PlotLines("##residual", history.data(), int(history.size()), 0, "log10 residual", FLT_MAX, FLT_MAX,
                              ImVec2(kRightWidth - 20, 60));
         if (ImGui::Button("Refine")) app.refine();
         ImGui::SameLine();

@@ -20,7 +20,7 @@ struct StudioOptions {
     int width = 1280, height = 800;                  ///< --size WxH, px
     bool relax = true;                               ///< --no-relax: show the initial geometry only
     double settleSeconds = 0;                        ///< --settle S: before the screenshot, wait for the relaxation
-    int samples = 4;                                 ///< --samples N: multisample anti-aliasing (0 = off)
+    int samples = -1; ///< --samples N: multisample anti-aliasing (0 = off); -1 = 4, or 0 on a software renderer
     bool vsync = true;                               ///< --no-vsync (implied by --play)
     std::optional<std::string> printHandles;         ///< --print-handles MODE: pixel positions after frame 1
     std::string colourBy = "piece";                  ///< --colour piece|tension

@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 #include <cstdlib>
+#include <cstdio>
 
 static_assert(sizeof(btScalar) == sizeof(double),
               "the Bullet backend needs Bullet in double precision (BT_USE_DOUBLE_PRECISION)");
@@ -49,9 +50,13 @@ constexpr double kFirstStepFall = 0.1;
 static const double kStepShrink = getenv("SHRINK") ? atof(getenv("SHRINK")) : 0.5;
 static const double kStepGrowth = getenv("GROW") ? atof(getenv("GROW")) : 4;
 static const double kSerPower = getenv("SERPOW") ? atof(getenv("SERPOW")) : 1;
-// A residual of Bullet's model above this factor times the best one is a blow-up: restore the
-// best state at rest and quarter the step; a step below kMinStepFraction of the first: diverged.
+// A step that raises the residual of Bullet's model above kRejectGrowth times the last accepted
+// one is undone and retried with half the step (a quarter above kBlowUpFactor times), which is
+// then the longest step until kRecoverSteps steps in a row are accepted (each recovery doubles
+// it). A step below kMinStepFraction of the first: diverged.
+static const double kRejectGrowth = getenv("REJECT") ? atof(getenv("REJECT")) : 2;
 constexpr double kBlowUpFactor = 1e3;
+static const std::int64_t kRecoverSteps = getenv("RECOVER") ? atoi(getenv("RECOVER")) : 4;
 constexpr double kMinStepFraction = 1e-6;
 // Newton's exact matrix (compressed links included) is used once the residual of Bullet's model
 // is below this; a step with it that raises the residual is undone, and the positive matrix is
@@ -158,6 +163,7 @@ class StaticDeformableSolver final : public btDeformableBodySolver {
         m_maxNewtonIterations = newtonIterations;
         m_newtonTolerance = 0; // run all of them
         m_cg.m_maxIterations = conjugateGradientIterations;
+        if (getenv("CGTOL")) m_cg.setTolerance(atof(getenv("CGTOL")));
     }
 };
 
@@ -425,24 +431,23 @@ RelaxResult BulletRelaxer::relax(MassSpringSystem& system, const RelaxOptions& o
     };
 
     // The state returned: in the last stage the lowest residual of Eq. 3 seen; before it, the
-    // lowest residual of Bullet's model in the stage (the shape is then only a preview).
+    // last accepted state (the shape is then only a preview).
     std::vector<Vec3> best = positions;
     double bestResidual = std::numeric_limits<double>::infinity();
-    // The restart state after a blow-up: the lowest residual of Bullet's model in the stage.
-    std::vector<Vec3> restState = positions;
-    double restResidual = 0;
-    // The last accepted state, for rejecting a full-matrix step that made things worse.
+    // The last accepted state and its residual of Bullet's model: a step that raises it more than
+    // kRejectGrowth times is undone.
     std::vector<Vec3> accepted = positions;
     double acceptedResidual = 0;
-    double ceiling = maxStep;          // the stage's longest step; lowered by blow-ups
-    std::int64_t fullMatrixFrom = 0;   // steps before this one use the positive matrix
+    double ceiling = maxStep;        // longest step for now; lowered by rejections, recovers
+    std::int64_t sinceRejection = 0; // accepted steps since the last rejection
+    std::int64_t fullMatrixFrom = 0; // steps before this one use the positive matrix
     auto beginStage = [&] {
         scene->setStiffnessScale(scale);
         project.setLoad(std::nullopt, scale);
         if (ownModel)
             ownModel->setLoad(std::nullopt, scale);
-        restResidual = acceptedResidual = ownResidual(projectResidual());
-        restState = accepted = positions;
+        acceptedResidual = ownResidual(projectResidual());
+        accepted = positions;
         bestResidual = std::numeric_limits<double>::infinity();
         step = firstStep;
         ceiling = maxStep;
@@ -460,32 +465,31 @@ RelaxResult BulletRelaxer::relax(MassSpringSystem& system, const RelaxOptions& o
         const bool finite = scene->readPositions(positions);
         const double r = finite ? projectResidual() : std::numeric_limits<double>::infinity();
         const double own = std::isfinite(r) ? ownResidual(r) : r;
-        if (!std::isfinite(own) || own > kBlowUpFactor * restResidual) {
-            // Blow-up: back to the stage's best state, at rest, with a quarter of the step, which
-            // is also the stage's longest step from now on.
-            scene->writePositions(restState);
-            positions = accepted = restState;
-            acceptedResidual = restResidual;
-            step *= 0.25;
+        static const bool dbg = getenv("DBG") != nullptr;
+        if (dbg) fprintf(stderr, "DBG step %lld scale %.3g dt %.3g ceil %.3g full %d own %.3e acc %.3e ratio %.3f\n", (long long)steps, scale, step, ceiling, int(fullMatrix), own, acceptedResidual, own / acceptedResidual);
+        if (!(own <= kRejectGrowth * acceptedResidual)) {
+            // Rejected (worse, or not finite): undo the step; retry shorter, and make that the
+            // longest step for a while. A step with the exact matrix also pauses that matrix.
+            scene->writePositions(accepted);
+            positions = accepted;
+            step *= own > kBlowUpFactor * acceptedResidual || !std::isfinite(own) ? 0.25 : 0.5;
             ceiling = step;
-            fullMatrixFrom = steps + kFullMatrixPause;
+            sinceRejection = 0;
+            if (fullMatrix)
+                fullMatrixFrom = steps + kFullMatrixPause;
             if (step < minStep) {
                 stopReason = "diverged";
                 break;
             }
         } else if (fullMatrix && own > acceptedResidual) {
-            // The exact matrix did worse than the state it started from (a compressed link
-            // made it indefinite): undo the step, go on with the positive matrix for a while.
+            // The exact matrix did worse than the state it started from (a compressed link made
+            // it indefinite): undo the step, go on with the positive matrix for a while.
             scene->writePositions(accepted);
             positions = accepted;
             fullMatrixFrom = steps + kFullMatrixPause;
         } else {
-            if (own < restResidual) {
-                restResidual = own;
-                restState = positions;
-            }
-            if (scale < 1.0 ? own <= restResidual : r < bestResidual) {
-                bestResidual = scale < 1.0 ? own : r;
+            if (scale < 1.0 || r < bestResidual) {
+                bestResidual = r;
                 best = positions;
             }
             if (scale < 1.0) {
@@ -503,7 +507,11 @@ RelaxResult BulletRelaxer::relax(MassSpringSystem& system, const RelaxOptions& o
                 break;
             }
             // Switched evolution relaxation: the step grows as the residual falls (a Newton step
-            // in the limit) and shrinks when it rises.
+            // in the limit) and shrinks when it rises; the ceiling recovers after good steps.
+            if (++sinceRejection >= kRecoverSteps) {
+                ceiling = std::min(maxStep, 2 * ceiling);
+                sinceRejection = 0;
+            }
             if (settings_.adaptiveTimeStep)
                 step = std::min(ceiling, step * std::clamp(std::pow(acceptedResidual / own, kSerPower), kStepShrink, kStepGrowth));
             accepted = positions;
@@ -517,7 +525,7 @@ RelaxResult BulletRelaxer::relax(MassSpringSystem& system, const RelaxOptions& o
         else if (options.maxSteps >= 0 && steps >= options.maxSteps)
             stopReason = "step limit";
         if (now - lastProgress >= options.progressInterval) {
-            report(std::isfinite(r) ? r : restResidual, now);
+            report(std::isfinite(r) ? r : acceptedResidual, now);
             lastProgress = now;
         }
     }

@@ -1,0 +1,170 @@
+// netsculpt-studio itself, under Xvfb: it replays tests/data/studio/add_rows.events on the demo,
+// then the test reads the journal the studio wrote (the expected commands, one undo step) and the
+// screenshot (the net is drawn, in the piece colours, where the fixed camera projects its knots).
+
+#include "commands/Journal.h"
+#include "interaction/DemoScenes.h"
+#include "interaction/Handles.h"
+
+#include <catch2/catch.hpp>
+#include <stb_image.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+
+using namespace netsculpt;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kWidth = 1280, kHeight = 800;
+
+struct Image {
+    int width = 0, height = 0;
+    std::unique_ptr<unsigned char, void (*)(void*)> pixels{nullptr, stbi_image_free};
+    const unsigned char* at(int x, int y) const { return pixels.get() + (std::size_t(y) * width + x) * 3; }
+};
+
+Image readPng(const fs::path& path) {
+    Image image;
+    int channels = 0;
+    image.pixels.reset(stbi_load(path.string().c_str(), &image.width, &image.height, &channels, 3));
+    REQUIRE(image.pixels);
+    return image;
+}
+
+/// Runs the studio on the demo with the add_rows events; returns the folder of its outputs.
+fs::path runStudio(const std::string& name, const std::string& extra) {
+    const fs::path out = fs::path(NETSCULPT_BINARY_DIR) / "tests" / "studio" / name;
+    fs::remove_all(out);
+    fs::create_directories(out);
+    const fs::path events = fs::path(NETSCULPT_SOURCE_DIR) / "tests/data/studio/add_rows.events";
+    const std::string command = "xvfb-run -a -s \"-screen 0 1280x800x24\" \"" + std::string(NETSCULPT_STUDIO_EXE) +
+                                "\" --demo --play \"" + events.string() + "\" --screenshot \"" +
+                                (out / "out.png").string() + "\" --journal \"" + (out / "out.netj").string() +
+                                "\" --exit-after-frames 40 --size 1280x800 " + extra + " > \"" +
+                                (out / "log.txt").string() + "\" 2>&1";
+    const int status = std::system(command.c_str());
+    std::ifstream log(out / "log.txt");
+    std::stringstream text;
+    text << log.rdbuf();
+    INFO(command << "\n" << text.str());
+    REQUIRE(status == 0);
+    REQUIRE(fs::exists(out / "out.png"));
+    REQUIRE(fs::exists(out / "out.netj"));
+    return out;
+}
+
+/// The camera the studio starts with: the demo framed in a 1280 x 800 window.
+Camera studioCamera() {
+    Document demo;
+    buildDemoSculpture(demo);
+    Camera camera(kWidth, kHeight);
+    const auto [lo, hi] = sceneBounds(demo.sculpture(), demo.compiled());
+    camera.frame(lo, hi);
+    return camera;
+}
+
+/// The pixel has the hue of one of the colours (shading and fog change brightness, not hue).
+bool netColoured(const unsigned char* p, const std::vector<Colour>& colours) {
+    const double mean = (p[0] + p[1] + p[2]) / 3.0;
+    const double v[3] = {p[0] - mean, p[1] - mean, p[2] - mean};
+    const double norm = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (norm < 20) return false; // grey: background, grid, rails
+    for (const Colour& c : colours) {
+        const double m = (c.r + c.g + c.b) / 3;
+        const double w[3] = {c.r - m, c.g - m, c.b - m};
+        const double cosine = (v[0] * w[0] + v[1] * w[1] + v[2] * w[2]) /
+                              (norm * std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]));
+        if (cosine > 0.85) return true;
+    }
+    return false;
+}
+
+std::vector<Colour> pieceColours(const Sculpture& s) {
+    std::vector<Colour> colours;
+    for (const auto& [id, p] : s.pieces) colours.push_back(p.colour);
+    return colours;
+}
+
+double netColouredFraction(const Image& image, const std::vector<Colour>& colours) {
+    std::size_t hits = 0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) hits += netColoured(image.at(x, y), colours);
+    return double(hits) / (double(image.width) * image.height);
+}
+
+/// The journal holds the demo's seven commands, then set_rows on piece 2 up to 15 rows, merged
+/// into one undo step.
+void checkJournal(const fs::path& journal) {
+    const JournalContents contents = readJournal(journal);
+    CHECK(contents.warnings.empty());
+    const auto& e = contents.entries;
+    REQUIRE(e.size() >= 8);
+    const char* demo[] = {"add_rail",       "add_rail",        "add_rail",      "attach_to_rail",
+                          "attach_to_piece", "connect_to_rail", "attach_to_rail"};
+    for (std::size_t i = 0; i < 7; ++i) CHECK(commandName(e[i].command) == demo[i]);
+    for (std::size_t i = 7; i < e.size(); ++i) {
+        REQUIRE(e[i].kind == JournalEntry::Kind::Command);
+        const auto* rows = std::get_if<SetRowsCommand>(&e[i].command);
+        REQUIRE(rows);
+        CHECK(rows->piece == PieceId(2));
+        CHECK(e[i].merge == (i > 7)); // the first step of the drag opens the undo step
+    }
+    CHECK(std::get<SetRowsCommand>(e.back().command).rows == 15);
+
+    Document replayed = Document::open(journal);
+    CHECK(replayed.sculpture().piece(PieceId(2)).rows == 15);
+    replayed.undo();
+    CHECK(replayed.sculpture().piece(PieceId(2)).rows == 10); // the whole drag was one undo step
+}
+
+} // namespace
+
+TEST_CASE("studio: the add_rows events add five rows with one undo step and the net is drawn", "[studio]") {
+    const fs::path out = runStudio("relaxing", "");
+    checkJournal(out / "out.netj");
+    const Image image = readPng(out / "out.png");
+    REQUIRE(image.width == kWidth);
+    REQUIRE(image.height == kHeight);
+    Document replayed = Document::open(out / "out.netj");
+    // Not blank: a good share of the picture is net (about 4 % for the demo at this size).
+    CHECK(netColouredFraction(image, pieceColours(replayed.sculpture())) > 0.01);
+}
+
+TEST_CASE("studio: without relaxation the net is drawn exactly where the camera projects its knots", "[studio]") {
+    const fs::path out = runStudio("still", "--no-relax");
+    checkJournal(out / "out.netj");
+    const Image image = readPng(out / "out.png");
+    REQUIRE(image.width == kWidth);
+    const Document replayed = Document::open(out / "out.netj"); // the same positions: Eq. 1-2, carried
+    const std::vector<Colour> colours = pieceColours(replayed.sculpture());
+    const Camera camera = studioCamera();
+    const MassSpringSystem& sys = replayed.compiled().system;
+    std::size_t checked = 0, drawn = 0;
+    for (std::size_t j = 0; j < sys.knotCount(); ++j) {
+        if (sys.fixed[j]) continue; // under the rails' thick lines
+        const ScreenPoint sp = camera.project(sys.position[j]);
+        // Only where no panel covers the view: between the inspector, the solver and the bars.
+        if (!sp.visible || sp.x < 330 || sp.x > 990 || sp.y < 80 || sp.y > 760) continue;
+        ++checked;
+        bool found = false;
+        for (int dy = -2; dy <= 2 && !found; ++dy)
+            for (int dx = -2; dx <= 2 && !found; ++dx)
+                found = netColoured(image.at(int(sp.x) + dx, int(sp.y) + dy), colours);
+        drawn += found;
+    }
+    INFO(drawn << " of " << checked << " knots show in a piece colour");
+    CHECK(checked > 500);
+    CHECK(double(drawn) / double(checked) > 0.95);
+    // And away from the net (the top-left of the view, above the crown) there is none.
+    std::size_t stray = 0;
+    for (int y = 90; y < 180; ++y)
+        for (int x = 330; x < 420; ++x) stray += netColoured(image.at(x, y), colours);
+    CHECK(stray == 0);
+}
