@@ -83,20 +83,22 @@ int invoke(lua_State* L, const char* name, Body body) {
     int results = 0;
     bool failed = false;
     {
-        const BindingExemption exemption(L);
+        const BindingExemption exemption(L); // no Lua error (memory) while C++ frames are live
+        std::string message;
         try {
             Call call{L, name};
             results = body(call);
         } catch (...) {
-            const std::string message = currentErrorMessage(name);
-            luaL_where(L, 1);
-            lua_pushlstring(L, message.data(), message.size());
-            lua_concat(L, 2);
+            message = currentErrorMessage(name);
             failed = true;
         }
+        if (failed) {
+            luaL_where(L, 1); // the script's file:line
+            lua_pushlstring(L, message.data(), message.size());
+            lua_concat(L, 2);
+        }
     }
-    if (failed)
-        return lua_error(L); // outside the handler and every C++ frame with a destructor
+    if (failed) return lua_error(L); // every C++ object of this call is gone: lua_error longjmps
     return results;
 }
 

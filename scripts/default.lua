@@ -6,7 +6,7 @@
 --
 -- Writes into the output folder: knots.csv (every knot), bars.obj (the bars as tubes),
 -- sculpture.glb (bars coloured by tension), report.json and report.md (fabrication and loads),
--- view.png (four views), and the session's journal default.netj.
+-- sculpture.png (four views), and the session's journal default.netj.
 -- NETSCULPT_QUICK=1 (or the argument --quick) relaxes for at most 3 s, as CI does.
 
 local ns = require "netsculpt"
@@ -42,7 +42,7 @@ print(string.format("relaxation: %s after %d steps, %.1f s, residual %.2g (%s)",
 doc:export("knots.csv")
 doc:export("bars.obj", {tube_radius = 0.004})
 doc:export("sculpture.glb", {colour_by = "tension"})
-doc:export("view.png", {width = 1600, height = 1200})
+doc:export("sculpture.png", {width = 1600, height = 1200})
 doc:write_report("report.json")
 doc:write_report("report.md")
 

@@ -47,7 +47,7 @@ void buildDemoSculpture(Document& doc) {
     AttachToPieceArgs below;
     below.parent = crownNet;
     below.gear = Gear{1, 2};
-    below.rows = 10;
+    below.rows = 8;
     below.bar = 0.3;
     const PieceId lower = firstPiece(doc.execute(AttachToPieceCommand{below}));
     doc.execute(ConnectToRailCommand{lower, ring, 0.0, false});

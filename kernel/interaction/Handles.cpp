@@ -29,6 +29,7 @@ Handle pieceHandle(HandleKind kind, const Piece& p, int row, int column, const C
 /// Rail positions of `count` spheres: [0, 1) on a closed rail, [0, end] on an open one.
 std::vector<double> railStops(bool closed, int count, double end = 1) {
     std::vector<double> stops;
+    if (!closed && end <= 0) return {0.0}; // exactly one place fits
     count = std::max(count, 2);
     for (int i = 0; i < count; ++i) stops.push_back(closed ? double(i) / count : end * i / (count - 1));
     return stops;
@@ -193,7 +194,7 @@ std::pair<Vec3, Vec3> sceneBounds(const Sculpture& s, const CompiledSculpture& c
     for (const auto& [id, rail] : s.rails)
         for (double t : railStops(rail.curve().closed(), 64)) add(rail.curve().pointAt(t));
     for (const Vec3& p : compiled.system.position) add(p);
-    if (!(lo.x <= hi.x)) return {Vec3{-0.5, -0.5, -0.5}, Vec3{0.5, 0.5, 0.5}};
+    if (!(lo.x <= hi.x)) return {Vec3{-2, -2, 0}, Vec3{2, 2, 3}}; // room for a first rail
     return {lo, hi};
 }
 

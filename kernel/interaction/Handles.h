@@ -73,7 +73,7 @@ std::vector<Handle> connectTargets(const Sculpture& s, const CompiledSculpture& 
 int pickHandle(const std::vector<Handle>& handles, const Camera& camera, double x, double y,
                double radiusPixels);
 
-/// Bounding box of the rails and knots (for frame-all). An empty sculpture gives a unit box.
+/// Bounding box of the rails and knots (for frame-all). An empty sculpture gives a 4 x 4 x 3 m box.
 std::pair<Vec3, Vec3> sceneBounds(const Sculpture& s, const CompiledSculpture& compiled);
 
 } // namespace netsculpt

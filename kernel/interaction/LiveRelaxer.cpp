@@ -22,19 +22,6 @@ MassSpringSystem scaledCopy(const MassSpringSystem& system, double scale) {
     return soft;
 }
 
-/// The stiffness scales a run walks through: the preview's only, or the ladder up to 1.
-std::vector<double> stages(double first, LivePhase phase, double factor) {
-    if (phase == LivePhase::Preview) return {first};
-    std::vector<double> out;
-    if (first < 1) {
-        const double n = std::ceil(std::log(1 / first) / std::log(factor) - 1e-9);
-        const double step = std::pow(1 / first, 1 / n);
-        for (int i = 0; i < int(n); ++i) out.push_back(first * std::pow(step, i));
-    }
-    out.push_back(1.0);
-    return out;
-}
-
 } // namespace
 
 double previewScale(const MassSpringSystem& system, double requested) {
@@ -152,25 +139,21 @@ void LiveRelaxer::runJob(Job& job) {
         // One relaxer for the worker's lifetime: a backend may keep per-topology analysis between
         // calls (the fast backend does), which a drag that keeps the topology reuses.
         if (!relaxer_) relaxer_ = makeRelaxer(options_.backend);
-        Relaxer* relaxer = relaxer_.get();
-        const double first = previewScale(job.system, options_.previewStiffnessScale);
-        const std::vector<double> ladder = stages(first, job.phase, options_.continuationFactor);
-        for (std::size_t stage = 0; stage < ladder.size(); ++stage) {
-            const bool lastStage = stage + 1 == ladder.size();
-            MassSpringSystem soft = scaledCopy(job.system, ladder[stage]);
-            RelaxOptions o;
-            o.tolerance = job.phase == LivePhase::Preview ? options_.previewTolerance
-                          : lastStage                     ? options_.refineTolerance
-                                                          : std::max(options_.stageTolerance, options_.refineTolerance);
-            o.continuation = false; // the ladder is walked here, so every chunk publishes
-            o.cancel = &cancel_;
-            o.threads = options_.threads;
+        RelaxOptions o;
+        o.cancel = &cancel_;
+        o.threads = options_.threads;
+        if (job.phase == LivePhase::Preview) {
+            // The soft copy in short runs, each published: the net visibly settles.
+            const double scale = previewScale(job.system, options_.previewStiffnessScale);
+            MassSpringSystem soft = scaledCopy(job.system, scale);
+            o.tolerance = options_.previewTolerance;
+            o.continuation = false;
             o.maxSeconds = options_.publishInterval;
+            state.stiffnessScale = scale;
             for (;;) {
-                const RelaxResult r = relaxer->relax(soft, o);
+                const RelaxResult r = relaxer_->relax(soft, o);
                 state.steps += r.steps;
                 state.residual = r.residual;
-                state.stiffnessScale = ladder[stage];
                 state.seconds = seconds();
                 if (r.stopReason == "cancelled" || superseded()) {
                     if (!hasPending()) finish("cancelled", soft.position); // else a newer run follows
@@ -182,14 +165,34 @@ void LiveRelaxer::runJob(Job& job) {
                 state.positions = soft.position;
                 publish(state);
             }
-            job.system.position = soft.position;
-            if (!lastStage) {
-                state.positions = job.system.position;
-                publish(state);
-            }
+            state.converged = true;
+            return finish("converged", soft.position);
         }
-        state.converged = true;
-        finish("converged", job.system.position);
+        // Refine: the material's stiffness in one run, so the backend keeps its own continuation
+        // (restarting it in pieces can lead a slack net to another equilibrium); its progress
+        // reports are published without positions (the shape shown stays until the end).
+        o.tolerance = options_.refineTolerance;
+        o.maxSeconds = options_.maxSeconds;
+        o.continuation = true;
+        o.progressInterval = 3 * options_.publishInterval;
+        o.progress = [&](const RelaxProgress& p) {
+            LiveState report = state;
+            report.residual = p.residual;
+            report.stiffnessScale = p.stiffnessScale;
+            report.steps = p.steps;
+            report.seconds = seconds();
+            publish(std::move(report));
+        };
+        const RelaxResult r = relaxer_->relax(job.system, o);
+        state.steps = r.steps;
+        state.residual = r.residual;
+        state.stiffnessScale = 1;
+        if (r.stopReason == "cancelled" || superseded()) {
+            if (!hasPending()) finish("cancelled", job.system.position);
+            return;
+        }
+        state.converged = r.converged;
+        finish(r.stopReason, job.system.position);
     } catch (const UserError& e) {
         state.error = e.what();
         finish("error", job.system.position);

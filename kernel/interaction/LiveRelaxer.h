@@ -3,11 +3,11 @@
 // publishes its positions a few dozen times a second; the UI thread never waits for it.
 //
 // preview() relaxes a soft copy of the material (every stiffness scaled by the preview scale, so
-// it settles in a fraction of the time; the shape is close to the final one). Each call cancels
-// the run in progress (RelaxOptions::cancel) and starts again from the positions it is given,
-// so every edit restarts from the current shape. refine() climbs the stiffness continuation up
-// to the material's stiffness and stops at the refine tolerance; its published residual is the
-// real one in the last stage.
+// it settles in a fraction of the time; the shape is close to the final one) in short runs, each
+// published. Each call cancels the run in progress (RelaxOptions::cancel) and starts again from
+// the positions it is given, so every edit restarts from the current shape. refine() relaxes at
+// the material's stiffness in one run (the backend's own stiffness continuation) down to the
+// refine tolerance, publishing its residual as it converges and the positions at the end.
 //
 // Publication: the worker builds a new immutable LiveState and swaps a shared_ptr under a mutex;
 // latest() copies the pointer (the UI reads a state nobody writes).
@@ -32,13 +32,9 @@ struct LiveRelaxOptions {
     /// that the net stretches visibly (EA is kept >= 20 x the mean load per held knot).
     double previewStiffnessScale = 1e-2;
     double previewTolerance = 1e-3;   ///< the preview stops below this residual (at its stiffness)
-    double stageTolerance = 1e-3;     ///< refine: residual that ends a softer continuation stage
     double refineTolerance = 1e-6;    ///< refine: converged below this residual at full stiffness
-    /// refine: stiffness ratio between stages, > 1. 100 suits the Newton backend (from the preview
-    /// it goes to the material in one stage); the RK4 backend wants 10.
-    double continuationFactor = 100;
     double maxSeconds = 600;          ///< a run gives up after this long, s
-    double publishInterval = 1.0 / 30; ///< s of relaxation between two published shapes
+    double publishInterval = 1.0 / 30; ///< s of relaxation between two published preview shapes
     std::string backend = "auto";     ///< see makeRelaxer
     int threads = 0;                  ///< RelaxOptions::threads
 };
@@ -49,7 +45,9 @@ enum class LivePhase { Idle, Preview, Refine };
 struct LiveState {
     std::uint64_t generation = 0; ///< the tag given to preview()/refine(): which document state
     std::uint64_t sequence = 0;   ///< increases with every publication
-    std::vector<Vec3> positions;  ///< m, one per knot of the system it was given
+    /// m, one per knot of the system it was given; empty in a refine's progress reports (the
+    /// positions are those of the last state that had them).
+    std::vector<Vec3> positions;
     LivePhase phase = LivePhase::Idle;
     bool running = false;         ///< more publications of this run will follow
     bool converged = false;       ///< the run reached its tolerance (preview: at its soft stiffness)

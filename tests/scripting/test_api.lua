@@ -168,4 +168,19 @@ T.case("relax, export, report, save and open", function()
   T.eq(snap:knots(snap:pieces()[1])[4][1][3], knots[4][1][3]) -- the relaxed shape, bit for bit
 end)
 
+T.case("relax with wind and without continuation", function()
+  local doc = ns.new()
+  local rail = doc:add_rail{points = {{-1, 0, 3}, {1, 0, 3}}}
+  local p = doc:attach_to_rail{rail = rail, columns = 11, rows = 6, bar = 0.15}
+  local calm = doc:relax{max_seconds = 10}
+  T.eq(calm.converged, true)
+  local still = doc:knots(p)[6][6]
+  local windy = doc:relax{max_seconds = 10, continuation = false, wind = {direction = {0, 1, 0}, pressure = 0.05}}
+  T.eq(windy.converged, true)
+  T.check(doc:knots(p)[6][6][2] > still[2] + 1e-3, "the wind blows the net along +y")
+  T.raises(function() doc:relax{wind = {direction = {0, 0, 0}, pressure = 1}} end, "relax:", "direction")
+  T.raises(function() doc:relax{wind = {direction = {1, 0, 0}, pressure = -1}} end,
+           "relax: argument 'wind.pressure' must be a number of N/m >= 0, got -1")
+end)
+
 T.done("test_api")

@@ -109,6 +109,16 @@ TEST_CASE("run: exit code 0 with outputs and a journal, 1 with a one-line messag
     CHECK(args.exitCode == 0);
     CHECK_THAT(args.output, Contains("--no-relax\ttwo\t2"));
 
+    const Ran backend = runCli(
+        "run " +
+        quoted(writeScript(
+            dir, "backend.lua",
+            std::string(kSmallSculpture) +
+                "print('backend ' .. doc:relax{backend = 'fast', max_seconds = 0.5}.backend)")) +
+        " --out " + quoted(dir / "out") + " -q --backend rk4");
+    CHECK(backend.exitCode == 0);
+    CHECK_THAT(backend.output, Contains("backend rk4")); // --backend overrides the script's choice
+
     const Ran unsafe = runCli(
         "run " +
         quoted(writeScript(dir, "unsafe.lua", "assert(io.popen('echo hi'):read('l') == 'hi')")) +

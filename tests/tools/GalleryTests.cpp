@@ -105,8 +105,8 @@ double minZ(const std::vector<Knot>& knots) {
 
 TEST_CASE("default.lua: the Quick start sculpture", "[gallery]") {
     const fs::path out = runGallery("default.lua");
-    for (const char* file : {"knots.csv", "bars.obj", "sculpture.glb", "view.png", "report.json",
-                             "report.md", "default.netj"}) {
+    for (const char* file : {"knots.csv", "bars.obj", "sculpture.glb", "sculpture.png",
+                             "report.json", "report.md", "default.netj"}) {
         INFO(file);
         CHECK(fs::file_size(out / file) > 100);
     }

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
@@ -51,16 +52,16 @@ double framebufferScale(GLFWwindow* window) {
 
 void onCursor(GLFWwindow* w, double x, double y) {
     const double s = framebufferScale(w);
-    appOf(w).dispatch(MouseMove{x * s, y * s});
+    appOf(w).windowEvent(MouseMove{x * s, y * s});
 }
 void onButton(GLFWwindow* w, int button, int action, int mods) {
     if (button > GLFW_MOUSE_BUTTON_MIDDLE) return;
-    if (action == GLFW_PRESS) appOf(w).dispatch(MousePress{buttonOf(button), modsOf(mods)});
-    else if (action == GLFW_RELEASE) appOf(w).dispatch(MouseRelease{buttonOf(button), modsOf(mods)});
+    if (action == GLFW_PRESS) appOf(w).windowEvent(MousePress{buttonOf(button), modsOf(mods)});
+    else if (action == GLFW_RELEASE) appOf(w).windowEvent(MouseRelease{buttonOf(button), modsOf(mods)});
 }
-void onScroll(GLFWwindow* w, double, double dy) { appOf(w).dispatch(Scroll{dy}); }
+void onScroll(GLFWwindow* w, double, double dy) { appOf(w).windowEvent(Scroll{dy}); }
 void onKey(GLFWwindow* w, int key, int, int action, int mods) {
-    if (action != GLFW_RELEASE && key != GLFW_KEY_UNKNOWN) appOf(w).dispatch(KeyPress{key, modsOf(mods)});
+    if (action != GLFW_RELEASE && key != GLFW_KEY_UNKNOWN) appOf(w).windowEvent(KeyPress{key, modsOf(mods)});
 }
 
 } // namespace
@@ -148,17 +149,15 @@ int App::run() {
     camera_.setViewport(fw, fh);
     interaction_->frameAll();
     fpsWindowStart_ = std::chrono::steady_clock::now();
-    const auto start = fpsWindowStart_;
-    long long measuredFrames = 0;
+    auto afterFirstFrame = fpsWindowStart_; // the first frame (shader warm-up) is not measured
     while (!quitRequested_ && !glfwWindowShouldClose(window_)) {
         frame();
-        ++frameIndex_;
-        if (frameIndex_ > 1) ++measuredFrames;
+        if (++frameIndex_ == 1) afterFirstFrame = std::chrono::steady_clock::now();
         if (options_.exitAfterFrames > 0 && frameIndex_ >= options_.exitAfterFrames) break;
     }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::printf("netsculpt-studio: %lld frames in %.2f s (%.1f fps), %zu knots\n", frameIndex_, seconds,
-                seconds > 0 ? double(measuredFrames) / seconds : 0.0, doc_->compiled().system.knotCount());
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - afterFirstFrame).count();
+    std::printf("netsculpt-studio: %lld frames, %.1f fps, %zu knots\n", frameIndex_,
+                seconds > 0 ? double(frameIndex_ - 1) / seconds : 0.0, doc_->compiled().system.knotCount());
     if (liveState_)
         std::printf("netsculpt-studio: relaxation %s, residual %.3g at stiffness x%.3g\n",
                     liveState_->running ? "running" : liveState_->stopReason.c_str(), liveState_->residual,
@@ -178,9 +177,12 @@ void App::frame() {
     playEvents();
 
     const bool lastFrame = options_.exitAfterFrames > 0 && frameIndex_ + 1 >= options_.exitAfterFrames;
-    if (lastFrame && options_.settleSeconds > 0) {
-        syncLive(); // start the relaxation of the latest edit, then let it finish
-        live_->waitIdle(options_.settleSeconds);
+    if (lastFrame && options_.settleSeconds > 0) { // let the preview (and the refine after it) finish
+        const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(options_.settleSeconds);
+        for (int round = 0; round < 4 && std::chrono::steady_clock::now() < until; ++round) {
+            syncLive(); // takes the last state; may start the next run
+            live_->waitIdle(std::chrono::duration<double>(until - std::chrono::steady_clock::now()).count());
+        }
     }
     syncLive();
     if (options_.printHandles && frameIndex_ == 1) printHandles(*options_.printHandles);
@@ -220,6 +222,10 @@ void App::playEvents() {
     }
 }
 
+void App::windowEvent(const InputEvent& event) {
+    if (!options_.play) dispatch(event); // a replay is the only input: the real pointer must not interfere
+}
+
 void App::dispatch(const InputEvent& event) {
     const ImGuiIO* io = ImGui::GetCurrentContext() ? &ImGui::GetIO() : nullptr;
     const bool uiHasMouse = io && io->WantCaptureMouse;
@@ -230,6 +236,7 @@ void App::dispatch(const InputEvent& event) {
     } else if (const auto* press = std::get_if<MousePress>(&event)) {
         buttonDown_[int(press->button)] = true;
         notice_.clear();
+        if (std::getenv("NS_DEBUG")) std::printf("press at %g %g ui %d hovered %d\n", cursorX_, cursorY_, int(uiHasMouse), ui.hovered());
         if (!uiHasMouse && !restorePending_) ui.handle(event);
     } else if (const auto* release = std::get_if<MouseRelease>(&event)) {
         buttonDown_[int(release->button)] = false;
@@ -261,13 +268,23 @@ void App::syncLive() {
     if (const auto state = live_->latest(); state && state->sequence != seenSequence_) {
         seenSequence_ = state->sequence;
         liveState_ = state;
-        if (state->generation == shownVersion_ && state->positions.size() == doc.compiled().system.knotCount()) {
-            doc.compiled().system.position = state->positions; // the next edit warm-starts from here
-            positionsDirty_ = true;
-            reportDirty_ = true;
+        if (state->generation == shownVersion_) {
+            if (state->positions.size() == doc.compiled().system.knotCount()) {
+                doc.compiled().system.position = state->positions; // the next edit warm-starts from here
+                positionsDirty_ = true;
+                reportDirty_ = true;
+            }
             if (state->residual > 0) residualHistory_.push_back(float(std::log10(state->residual)));
             if (residualHistory_.size() > 400) residualHistory_.erase(residualHistory_.begin());
         }
+    }
+    // Once the soft preview has settled, go on to the material's stiffness (the report's forces
+    // are only right there); Newton gets there in a few steps from the preview's shape.
+    if (autoRefine_ && liveEnabled_ && liveState_ && !liveState_->running && liveState_->converged &&
+        liveState_->phase == LivePhase::Preview && liveState_->generation == shownVersion_ &&
+        refinedVersion_ != shownVersion_) {
+        refinedVersion_ = shownVersion_;
+        live_->refine(doc.compiled().system, shownVersion_);
     }
     if (positionsDirty_) {
         renderer_.setPositions(doc.sculpture(), doc.compiled().system, colourBy_);
@@ -297,7 +314,7 @@ Overlay App::buildOverlay() const {
         o.spheres.push_back({h.position, camera_.worldPerPixels(h.position, h.pixelRadius), colourOf(h.kind)});
     if (ui.hovered() >= 0) {
         const Handle& h = ui.handles()[std::size_t(ui.hovered())];
-        o.translucent.push_back({h.position, camera_.worldPerPixels(h.position, h.pixelRadius * 1.8), {1, 0.12f, 0.08f, 0.45f}});
+        o.translucent.push_back({h.position, camera_.worldPerPixels(h.position, h.pixelRadius * 1.8), {1, 0.2f, 0.15f, 0.5f}});
     }
     if (const auto& dragged = ui.dragged(); dragged && dragged->kind == HandleKind::ConnectSource) {
         const Ray ray = camera_.rayAt(ui.cursorX(), ui.cursorY());

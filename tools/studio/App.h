@@ -35,6 +35,8 @@ class App {
 
     /// Every input event, from GLFW's callbacks or from the --play file.
     void dispatch(const InputEvent& event);
+    /// An event from GLFW's callbacks: dispatched, unless a --play file drives this session.
+    void windowEvent(const InputEvent& event);
 
     // ---- what the panels use ----
     Document& document() { return *doc_; }
@@ -43,6 +45,9 @@ class App {
     std::shared_ptr<const LiveState> liveState() const { return liveState_; }
     bool liveEnabled() const { return liveEnabled_; }
     void setLiveEnabled(bool on);
+    /// Refine automatically when the preview has settled (on by default).
+    bool autoRefine() const { return autoRefine_; }
+    void setAutoRefine(bool on) { autoRefine_ = on; }
     ColourBy colourBy() const { return colourBy_; }
     void setColourBy(ColourBy c);
     void refine();
@@ -111,6 +116,8 @@ class App {
     std::uint64_t seenSequence_ = 0;     ///< last LiveState sequence taken
     std::shared_ptr<const LiveState> liveState_;
     bool liveEnabled_ = true;
+    bool autoRefine_ = true;
+    std::uint64_t refinedVersion_ = 0; ///< the version auto-refine last ran for
     ColourBy colourBy_ = ColourBy::Piece;
     bool positionsDirty_ = true;
     std::vector<float> residualHistory_;

@@ -65,7 +65,7 @@ void App::buildInitialDocument() {
         doc_->markClean();
     }
     const bool startsEmpty = !options_.open && !options_.demo && options_.demoKnots == 0 && !options_.script;
-    if (startsEmpty && !options_.journal && !options_.play && hasEntries(sessionPath_)) restorePending_ = true;
+    if (startsEmpty && !options_.journal && hasEntries(sessionPath_)) restorePending_ = true;
     else attachSession();
     interaction_->setDocument(*doc_);
 }

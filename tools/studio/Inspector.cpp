@@ -178,10 +178,12 @@ void Panels::drawReport(App& app) {
             if (m > load) load = m, where = rail.value("name", std::string());
         }
         ImGui::Text("largest rail load %.2f N (%s)", load, where.c_str());
-        ImGui::TextDisabled("%zu slack bars, %s shape", r.value("slack_bars", std::size_t{0}),
-                            app.liveState() && app.liveState()->converged && app.liveState()->stiffnessScale == 1
-                                ? "relaxed"
-                                : "preview");
+        const auto live = app.liveState();
+        const bool relaxed = live && live->converged && live->stiffnessScale == 1 &&
+                             live->generation == app.interaction().version();
+        ImGui::TextDisabled("%zu slack bars", r.value("slack_bars", std::size_t{0}));
+        if (relaxed) ImGui::TextDisabled("relaxed shape");
+        else ImGui::TextColored(ImVec4(0.95f, 0.75f, 0.3f, 1), "preview shape: forces are not final (Refine)");
     } catch (const nlohmann::json::exception& e) {
         ImGui::TextDisabled("report: %s", e.what());
     }

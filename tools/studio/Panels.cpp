@@ -188,6 +188,12 @@ void Panels::drawSolver(App& app) {
         ImGui::Text("%zu knots, %zu bars", sys.knotCount(), sys.barCount());
         bool live = app.liveEnabled();
         if (ImGui::Checkbox("live relaxation", &live)) app.setLiveEnabled(live);
+        bool autoRefine = app.autoRefine();
+        ImGui::SameLine();
+        if (ImGui::Checkbox("then refine", &autoRefine)) app.setAutoRefine(autoRefine);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("When the soft preview has settled, relax at the material's stiffness\n"
+                              "(the report's forces are only right then)");
         if (const auto s = app.liveState()) {
             const char* phase = s->phase == LivePhase::Refine ? "refine" : "preview";
             if (s->running) ImGui::Text("%s: relaxing...", phase);

@@ -50,13 +50,10 @@ constexpr double kFirstStepFall = 0.1;
 static const double kStepShrink = getenv("SHRINK") ? atof(getenv("SHRINK")) : 0.5;
 static const double kStepGrowth = getenv("GROW") ? atof(getenv("GROW")) : 4;
 static const double kSerPower = getenv("SERPOW") ? atof(getenv("SERPOW")) : 1;
-// A step that raises the residual of Bullet's model above kRejectGrowth times the last accepted
-// one is undone and retried with half the step (a quarter above kBlowUpFactor times), which is
-// then the longest step until kRecoverSteps steps in a row are accepted (each recovery doubles
-// it). A step below kMinStepFraction of the first: diverged.
-static const double kRejectGrowth = getenv("REJECT") ? atof(getenv("REJECT")) : 2;
+// A residual of Bullet's model above kBlowUpFactor times the stage's best is a blow-up: back to
+// the best state, at rest, with a quarter of the step; a step below kMinStepFraction of the
+// first: diverged.
 constexpr double kBlowUpFactor = 1e3;
-static const std::int64_t kRecoverSteps = getenv("RECOVER") ? atoi(getenv("RECOVER")) : 4;
 constexpr double kMinStepFraction = 1e-6;
 // Newton's exact matrix (compressed links included) is used once the residual of Bullet's model
 // is below this; a step with it that raises the residual is undone, and the positive matrix is
@@ -431,26 +428,26 @@ RelaxResult BulletRelaxer::relax(MassSpringSystem& system, const RelaxOptions& o
     };
 
     // The state returned: in the last stage the lowest residual of Eq. 3 seen; before it, the
-    // last accepted state (the shape is then only a preview).
+    // last state (the shape is then only a preview).
     std::vector<Vec3> best = positions;
     double bestResidual = std::numeric_limits<double>::infinity();
-    // The last accepted state and its residual of Bullet's model: a step that raises it more than
-    // kRejectGrowth times is undone.
+    // The restart state after a blow-up: the lowest residual of Bullet's model in the stage.
+    std::vector<Vec3> restState = positions;
+    double restResidual = 0;
+    // The state the last step started from, to undo a step made with the exact matrix.
     std::vector<Vec3> accepted = positions;
     double acceptedResidual = 0;
-    double ceiling = maxStep;        // longest step for now; lowered by rejections, recovers
-    std::int64_t sinceRejection = 0; // accepted steps since the last rejection
     std::int64_t fullMatrixFrom = 0; // steps before this one use the positive matrix
     auto beginStage = [&] {
         scene->setStiffnessScale(scale);
         project.setLoad(std::nullopt, scale);
         if (ownModel)
             ownModel->setLoad(std::nullopt, scale);
-        acceptedResidual = ownResidual(projectResidual());
-        accepted = positions;
+        restResidual = acceptedResidual = ownResidual(projectResidual());
+        restState = accepted = positions;
         bestResidual = std::numeric_limits<double>::infinity();
-        step = firstStep;
-        ceiling = maxStep;
+        static const bool resetStep = getenv("RESETDT") != nullptr;
+        if (resetStep) step = firstStep;
     };
     if (stopReason.empty())
         beginStage();
@@ -466,15 +463,13 @@ RelaxResult BulletRelaxer::relax(MassSpringSystem& system, const RelaxOptions& o
         const double r = finite ? projectResidual() : std::numeric_limits<double>::infinity();
         const double own = std::isfinite(r) ? ownResidual(r) : r;
         static const bool dbg = getenv("DBG") != nullptr;
-        if (dbg) fprintf(stderr, "DBG step %lld scale %.3g dt %.3g ceil %.3g full %d own %.3e acc %.3e ratio %.3f\n", (long long)steps, scale, step, ceiling, int(fullMatrix), own, acceptedResidual, own / acceptedResidual);
-        if (!(own <= kRejectGrowth * acceptedResidual)) {
-            // Rejected (worse, or not finite): undo the step; retry shorter, and make that the
-            // longest step for a while. A step with the exact matrix also pauses that matrix.
-            scene->writePositions(accepted);
-            positions = accepted;
-            step *= own > kBlowUpFactor * acceptedResidual || !std::isfinite(own) ? 0.25 : 0.5;
-            ceiling = step;
-            sinceRejection = 0;
+        if (dbg) fprintf(stderr, "DBG step %lld scale %.3g dt %.3g full %d own %.3e acc %.3e ratio %.3f\n", (long long)steps, scale, step, int(fullMatrix), own, acceptedResidual, own / acceptedResidual);
+        if (!(own <= kBlowUpFactor * restResidual)) {
+            // Blow-up (or not finite): back to the stage's best state, at rest, shorter step.
+            scene->writePositions(restState);
+            positions = accepted = restState;
+            acceptedResidual = restResidual;
+            step *= 0.25;
             if (fullMatrix)
                 fullMatrixFrom = steps + kFullMatrixPause;
             if (step < minStep) {
@@ -488,6 +483,10 @@ RelaxResult BulletRelaxer::relax(MassSpringSystem& system, const RelaxOptions& o
             positions = accepted;
             fullMatrixFrom = steps + kFullMatrixPause;
         } else {
+            if (own < restResidual) {
+                restResidual = own;
+                restState = positions;
+            }
             if (scale < 1.0 || r < bestResidual) {
                 bestResidual = r;
                 best = positions;
@@ -507,13 +506,9 @@ RelaxResult BulletRelaxer::relax(MassSpringSystem& system, const RelaxOptions& o
                 break;
             }
             // Switched evolution relaxation: the step grows as the residual falls (a Newton step
-            // in the limit) and shrinks when it rises; the ceiling recovers after good steps.
-            if (++sinceRejection >= kRecoverSteps) {
-                ceiling = std::min(maxStep, 2 * ceiling);
-                sinceRejection = 0;
-            }
+            // in the limit) and shrinks when it rises.
             if (settings_.adaptiveTimeStep)
-                step = std::min(ceiling, step * std::clamp(std::pow(acceptedResidual / own, kSerPower), kStepShrink, kStepGrowth));
+                step = std::min(maxStep, step * std::clamp(std::pow(acceptedResidual / own, kSerPower), kStepShrink, kStepGrowth));
             accepted = positions;
             acceptedResidual = own;
         }

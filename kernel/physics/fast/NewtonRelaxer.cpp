@@ -12,23 +12,39 @@
 #include <limits>
 #include <string>
 #include <thread>
+#include <cstdio>
+#include <cstdlib>
 
 namespace netsculpt {
 
 namespace {
 
+double tuneParam(const char* name, double value) {
+    const char* v = std::getenv(name);
+    return v ? std::atof(v) : value;
+}
+
 // Soft stage: EA scaled down to kSoftLoadFactor times the mean load per held knot (strains of a
 // few per cent at the top of a net; the same floor as RK4's first continuation stage). No soft
 // stage when that would not soften the material by at least kMaxSoftScale.
-constexpr double kSoftLoadFactor = 20;
+static const double kSoftLoadFactor = tuneParam("kSoftLoadFactor", 20);
 constexpr double kMaxSoftScale = 0.1;
 // Then stages kStageFactor times stiffer each (the last intermediate one at least
 // sqrt(kStageFactor) below the material's): a tension-dominated net needs none (the jump from the
 // soft stage to the material costs three or four iterations), a slack one needs them because the
 // shape of its slack parts changes with the stiffness. Each soft stage only has to bring the shape
 // near the next one: it stops at kSoftTolerance.
-constexpr double kStageFactor = 100;
-constexpr double kSoftTolerance = 1e-1;
+static const double kStageFactor = tuneParam("kStageFactor", 100);
+static const double kSoftTolerance = tuneParam("kSoftTolerance", 1e-1);
+constexpr bool kIntermediate = true;
+static const double kSoftBlend = tuneParam("kSoftBlend", 1);
+constexpr std::array<double, 1> kFinalBlends = {1};
+static const double kBlendTolerance = tuneParam("kBlendTolerance", 1e-3);
+static const double kDampingStart = tuneParam("kDampingStart", 1);
+static const double kDampingMin = tuneParam("kDampingMin", 1e-3);
+static const double kDampingUp = tuneParam("kDampingUp", 4);
+static const double kDampingDown = tuneParam("kDampingDown", 1.0 / 3);
+static const double kDampingCut = tuneParam("kDampingCut", 0.5);
 // A start is warm (no soft stage) when at least this share of the bars is stretched by more
 // than kTautStrain (the bars already carry the load; their tensions seed the mixed Newton) ...
 constexpr double kWarmTautShare = 0.5;
@@ -58,7 +74,7 @@ constexpr double kMixedGrowth = 10;
 constexpr int kMixedPatience = 4;
 // An accepted step shorter than this (a fraction of the Newton step) raises the shift (not on a
 // stage's first iteration, whose direction is poor by nature from a cold start).
-constexpr double kSmallStep = 1e-3;
+constexpr double kSmallStep = 0.2;
 // After the exact Hessian was found indefinite, the projected one is used for this many
 // iterations before the exact one is tried again.
 constexpr int kExactPause = 3;
@@ -142,6 +158,7 @@ class NewtonRun {
 
     double evaluate(const std::vector<Vec3>& at);
     void setScale(double scale);
+    void setCompression(double blend);
     void elasticTensions();
     void assemble(bool mixed, bool exact);
     bool factorize();
@@ -162,14 +179,18 @@ class NewtonRun {
 
     std::vector<Vec3> x_, trial_, force_, step_;
     std::vector<double> tension_;    ///< mixed stage: the bars' tension estimates, N
+    std::vector<double> kCompression_; ///< the stage's compression stiffness per bar, N/m at scale 1
     std::vector<double> barBlock_;   ///< 9 per bar: its Hessian block
     std::vector<double> values_;     ///< the Newton matrix's blocks (SupernodalCholesky layout)
     std::vector<double> rhs_;        ///< 3 per free knot
     std::vector<double> barTerm_;    ///< per bar scratch for sums done in a fixed order
     std::vector<double> weightOf_;   ///< m_j |g| per knot
     double scale_ = 1;
+    double compressionBlend_ = 0;
     double residual_ = 0;            ///< at x_, current scale
     double shift_ = kMinShift;       ///< lambda of the Levenberg shift
+    double damping_ = 0;             ///< lambda of the weight-scaled shift (energy stages)
+    std::vector<double> dampingUnit_; ///< per free knot: m_j |g| / (mean rest length), N/m
     double meanDiagonal_ = 1;
     bool windy_ = false;
     std::int64_t steps_ = 0, evaluations_ = 0;
@@ -199,6 +220,7 @@ NewtonRun::NewtonRun(MassSpringSystem& system, const RelaxOptions& options,
     force_.assign(knots, Vec3{});
     step_.assign(knots, Vec3{});
     tension_.assign(bars, 0.0);
+    kCompression_ = system.kCompression;
     barBlock_.assign(9 * bars, 0.0);
     values_.assign(9 * (analysis.freeKnots.size() + analysis.pairs.size()), 0.0);
     rhs_.assign(3 * analysis.freeKnots.size(), 0.0);
@@ -207,6 +229,13 @@ NewtonRun::NewtonRun(MassSpringSystem& system, const RelaxOptions& options,
     const double g = system.gravity.norm();
     for (std::size_t j = 0; j < knots; ++j)
         weightOf_[j] = system.mass[j] * g;
+    double restSum = 0;
+    for (double rest : system.restLength)
+        restSum += rest;
+    const double meanRest = bars > 0 && restSum > 0 ? restSum / static_cast<double>(bars) : 1.0;
+    dampingUnit_.resize(analysis.freeKnots.size());
+    for (std::size_t f = 0; f < analysis.freeKnots.size(); ++f)
+        dampingUnit_[f] = weightOf_[analysis.freeKnots[f]] / meanRest;
 }
 
 /// Eq. 3 at `at` for the current scale into force_; returns the max residual over free knots
@@ -229,13 +258,30 @@ void NewtonRun::setScale(double scale) {
     field_.setLoad(options_.wind, scale);
 }
 
+/// Compression stiffness max(k_c, blend k_s) (blend 0: the material's), force field included.
+void NewtonRun::setCompression(double blend) {
+    if (blend == compressionBlend_)
+        return;
+    compressionBlend_ = blend;
+    for (std::size_t b = 0; b < system_.barCount(); ++b)
+        kCompression_[b] = std::max(system_.kCompression[b], blend * system_.kTension[b]);
+    if (blend == 0) {
+        field_ = ForceField(system_);
+    } else {
+        MassSpringSystem blended = system_;
+        blended.kCompression = kCompression_;
+        field_ = ForceField(blended);
+    }
+    field_.setLoad(options_.wind, scale_);
+}
+
 /// tension_ = s k (l - l_eq) at x_: the elastic tensions at the current scale.
 void NewtonRun::elasticTensions() {
     forRange(system_.barCount(), [&](std::size_t begin, std::size_t end, std::size_t) {
         for (std::size_t b = begin; b < end; ++b) {
             const double l = distance(x_[system_.barA[b]], x_[system_.barB[b]]);
             const double extension = l - system_.restLength[b];
-            tension_[b] = (extension > 0 ? system_.kTension[b] : system_.kCompression[b]) *
+            tension_[b] = (extension > 0 ? system_.kTension[b] : kCompression_[b]) *
                           scale_ * extension;
         }
     });
@@ -252,14 +298,18 @@ void NewtonRun::assemble(bool mixed, bool exact) {
             const double l = d.norm();
             const double extension = l - system_.restLength[b];
             const double k =
-                (extension > 0 ? system_.kTension[b] : system_.kCompression[b]) * scale_;
+                (extension > 0 ? system_.kTension[b] : kCompression_[b]) *
+                scale_;
             double* h = &barBlock_[9 * b];
             if (!(l > 0)) { // no direction: isotropic, keeps the matrix definite
                 for (int i = 0; i < 9; ++i)
                     h[i] = i % 4 == 0 ? k : 0.0;
                 continue;
             }
-            const double t = mixed ? tension_[b] : k * extension;
+            const double t =
+                mixed ? tension_[b]
+                      : (extension > 0 ? system_.kTension[b] : kCompression_[b]) * scale_ *
+                            extension;
             const double q = (exact ? t : std::max(t, 0.0)) / l;
             const double u[3] = {d.x / l, d.y / l, d.z / l};
             for (int i = 0; i < 3; ++i)
@@ -290,6 +340,10 @@ void NewtonRun::assemble(bool mixed, bool exact) {
     double trace = 0;
     for (std::size_t f = 0; f < freeCount; ++f)
         trace += values_[9 * f] + values_[9 * f + 4] + values_[9 * f + 8];
+    if (!mixed && damping_ > 0)
+        for (std::size_t f = 0; f < freeCount; ++f)
+            for (int i : {0, 4, 8})
+                values_[9 * f + static_cast<std::size_t>(i)] += damping_ * dampingUnit_[f];
     meanDiagonal_ = freeCount > 0 && trace > 0 ? trace / (3.0 * static_cast<double>(freeCount)) : 1.0;
 }
 
@@ -329,8 +383,8 @@ double NewtonRun::energyChange(double alpha) {
             const Vec3 change = (step_[e] - step_[a]) * alpha;
             const Vec3 moved = d + change;
             const double l = d.norm(), lNew = moved.norm(), rest = system_.restLength[b];
-            const double k = (l > rest ? system_.kTension[b] : system_.kCompression[b]) * scale_;
-            const double kNew = (lNew > rest ? system_.kTension[b] : system_.kCompression[b]) * scale_;
+            const double k = (l > rest ? system_.kTension[b] : kCompression_[b]) * scale_;
+            const double kNew = (lNew > rest ? system_.kTension[b] : kCompression_[b]) * scale_;
             if (k == kNew && l + lNew > 0) {
                 // l' - l = (d' + d) . (d' - d) / (l' + l), without cancellation.
                 const double dl = change.dot(d * 2.0 + change) / (l + lNew);
@@ -373,7 +427,7 @@ void NewtonRun::takeStep(double alpha, bool mixed) {
                     continue;
                 const double linear = l + d.dot(step_[e] - step_[a]) * (alpha / l);
                 const double extension = linear - system_.restLength[b];
-                tension_[b] = (extension > 0 ? system_.kTension[b] : system_.kCompression[b]) *
+                tension_[b] = (extension > 0 ? system_.kTension[b] : kCompression_[b]) *
                               scale_ * extension;
             }
         });
@@ -439,25 +493,30 @@ RelaxResult NewtonRun::run() {
         double scale;
         double tolerance;
         bool mixed;
+        double blend; ///< compression stiffness max(k_c, blend k_s)
     };
     std::vector<Stage> stages;
     if (softScale < 1.0) {
-        stages.push_back({softScale, std::max(kSoftTolerance, tolerance), false});
-        for (double s = softScale * kStageFactor; s < 1 / std::sqrt(kStageFactor); s *= kStageFactor)
-            stages.push_back({s, std::max(kSoftTolerance, tolerance), false});
+        stages.push_back({softScale, std::max(kSoftTolerance, tolerance), false, kSoftBlend});
+        for (double s = softScale * kStageFactor; s < 1 / std::sqrt(kStageFactor) && kIntermediate; s *= kStageFactor)
+            stages.push_back({s, std::max(kSoftTolerance, tolerance), false, kSoftBlend});
+        for (double blend : kFinalBlends)
+            if (blend > 0)
+                stages.push_back({1.0, std::max(kBlendTolerance, tolerance), true, blend});
     }
-    stages.push_back({1.0, tolerance, warm || softScale < 1.0});
+    stages.push_back({1.0, tolerance, warm || softScale < 1.0, 0.0});
 
     if (analysis_.freeKnots.empty() || residual_ < tolerance)
         stopReason_ = "converged";
     for (std::size_t stageIndex = 0; stageIndex < stages.size() && stopReason_.empty(); ++stageIndex) {
         const Stage& stage = stages[stageIndex];
-        if (stageIndex > 0 || stage.scale != 1.0) {
+        if (stageIndex > 0 || stage.scale != 1.0 || stage.blend != 0) {
             // Tensions of the previous stage's equilibrium (or of the warm start) seed the
             // mixed stage; then the new stiffness.
             if (stage.mixed)
                 elasticTensions();
             setScale(stage.scale);
+            setCompression(stage.blend);
             residual_ = evaluate(x_);
         } else if (stage.mixed) {
             elasticTensions();
@@ -466,6 +525,7 @@ RelaxResult NewtonRun::run() {
         double best = residual_;
         int sinceBest = 0;
         shift_ = kMinShift;
+        damping_ = kDampingStart;
         const std::int64_t stageStart = steps_;
         int exactPause = 0; // iterations left before the exact Hessian is tried again
 
@@ -477,20 +537,25 @@ RelaxResult NewtonRun::run() {
             // The exact Hessian first (a slack bar's negative geometric stiffness included: near
             // a stable equilibrium with slack bars only it converges quadratically); when it is
             // not positive definite, the projected one.
-            const bool exact = exactPause == 0;
-            assemble(mixed, exact);
-            bool factored = factorize();
-            if (!factored && exact) {
-                exactPause = kExactPause;
-                assemble(mixed, false);
-                factored = factorize();
-            } else if (exactPause > 0) {
+            bool exact = exactPause == 0;
+            if (exactPause > 0)
                 --exactPause;
-            }
-            while (!factored && shift_ < kMaxShift) {
-                shift_ = std::max(shift_ * 10, kFailShift);
-                factored = factorize();
-            }
+            const auto assembleAndFactorize = [&] {
+                assemble(mixed, exact);
+                bool ok = factorize();
+                if (!ok && exact) {
+                    exact = false;
+                    exactPause = kExactPause;
+                    assemble(mixed, false);
+                    ok = factorize();
+                }
+                while (!ok && shift_ < kMaxShift) {
+                    shift_ = std::max(shift_ * 10, kFailShift);
+                    ok = factorize();
+                }
+                return ok;
+            };
+            bool factored = assembleAndFactorize();
             ++steps_;
             if (!factored) {
                 stopReason_ = "diverged";
@@ -543,6 +608,7 @@ RelaxResult NewtonRun::run() {
             if (!accepted) {
                 // No acceptable step along this direction: regularize more and try again from
                 // the same positions.
+                damping_ = std::max(damping_ * kDampingUp, kDampingMin);
                 shift_ = std::max(shift_ * 10, kFailShift);
                 if (shift_ > kMaxShift) {
                     stopReason_ = "diverged";
@@ -555,8 +621,17 @@ RelaxResult NewtonRun::run() {
                 shift_ = std::max(shift_ * 10, kFailShift);
             takeStep(alpha, mixed);
             residual_ = evaluate(x_);
+            if (std::getenv("NS_TRACE"))
+                std::fprintf(stderr, "it %lld scale %.3g mixed %d exact %d alpha %.3g shift %.3g res %.3g damp %.3g\n",
+                             (long long)steps_, scale_, (int)mixed, (int)(exact && exactPause == 0), alpha, shift_, residual_, damping_);
             if (alpha == 1.0)
                 shift_ = std::max(shift_ * 0.1, kMinShift);
+            if (!mixed) {
+                if (alpha == 1.0)
+                    damping_ = damping_ * kDampingDown < kDampingMin ? 0.0 : damping_ * kDampingDown;
+                else if (alpha < kDampingCut)
+                    damping_ = std::max(damping_ * kDampingUp, kDampingMin);
+            }
             if (mixed) {
                 if (residual_ < best) {
                     best = residual_;
