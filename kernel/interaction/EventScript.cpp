@@ -190,6 +190,7 @@ std::vector<ScriptStep> parseEventScript(std::string_view text, const std::strin
                 if (n < 1 || n != std::floor(n) || n > 1e5)
                     throw fail("drag steps must be a whole number from 1 to 10^5, got " + w[6]);
                 push(InputEvent{MouseMove{x0, y0}});
+                push(FrameWait{1}); // the pointer arrives (and the UI sees where it is) before the press
                 push(InputEvent{MousePress{button, {}}});
                 push(FrameWait{1});
                 for (int i = 1; i <= int(n); ++i) {

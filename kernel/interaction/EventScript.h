@@ -12,8 +12,11 @@
 //                          space, f1 .. f12 (e.g. key ctrl+z, key ctrl+shift+z, key r)
 //     scroll DY            DY wheel notches, > 0 = away from the user (zoom in)
 //     drag BUTTON X0 Y0 X1 Y1 [STEPS]
-//                          shorthand: move X0 Y0, press, STEPS moves (default 8) on the line
-//                          to (X1, Y1) with one frame after each, release
+//                          shorthand: move X0 Y0, frame 1, press, frame 1, STEPS moves (default
+//                          8) on the line to (X1, Y1) with one frame after each, release
+//
+// Like a real pointer, give the cursor a frame to arrive before a press ("move", "frame 1",
+// "press"): the panels decide whether a press is theirs from where the cursor was last frame.
 
 #include "interaction/InputEvent.h"
 

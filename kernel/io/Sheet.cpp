@@ -24,8 +24,9 @@ std::vector<Vec3> scenePoints(const Scene& scene) {
     return points;
 }
 
-/// The legend, right-aligned in the title bar: swatches and labels (pieces), or the ramp.
-void drawLegend(Canvas& canvas, const Scene& scene, double right, double top, double s) {
+/// The legend, right-aligned in the title bar between `left` (the title's end) and `right`:
+/// swatches and labels (pieces, as many as fit, then "+N more"), or the tension ramp.
+void drawLegend(Canvas& canvas, const Scene& scene, double left, double right, double top, double s) {
     const double swatch = 7 * s, gap = 4 * s;
     double x = right;
     const auto entry = [&](const std::string& label, const Rgb& colour) {
@@ -52,7 +53,17 @@ void drawLegend(Canvas& canvas, const Scene& scene, double right, double top, do
         canvas.text(x, top, low, s, kText);
         return;
     }
-    const std::size_t shown = std::min(scene.legend.size(), kMaxLegendPieces);
+    const auto entryWidth = [&](std::size_t i) {
+        return canvas.textWidth(scene.legend[i].label, s) + 4 * gap + swatch;
+    };
+    std::size_t shown = std::min(scene.legend.size(), kMaxLegendPieces);
+    const double moreWidth = canvas.textWidth("+99 more", s) + 3 * gap;
+    for (;;) {
+        double width = shown < scene.legend.size() ? moreWidth : 0;
+        for (std::size_t i = 0; i < shown; ++i) width += entryWidth(i);
+        if (shown == 0 || right - width >= left) break;
+        --shown;
+    }
     if (scene.legend.size() > shown) {
         const std::string more =
             concat({"+", std::to_string(scene.legend.size() - shown), " more"});
@@ -92,7 +103,7 @@ void drawSheet(Canvas& canvas, const Scene& scene, const Sheet& sheet, int width
     const double s = sheet.textScale;
     canvas.rect(0, 0, width, height, kBackground);
     canvas.text(8 * s, 7 * s, scene.title, s, kText);
-    drawLegend(canvas, scene, width - 8 * s, 7 * s, s);
+    drawLegend(canvas, scene, 8 * s + canvas.textWidth(scene.title, s) + 16 * s, width - 8 * s, 7 * s, s);
     canvas.line(0, sheet.titleHeight, width, sheet.titleHeight, kFrame, 1);
 
     const double barWidth = std::max(1.0, 0.65 * s), railWidth = 2.6 * barWidth;

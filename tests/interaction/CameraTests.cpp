@@ -41,7 +41,7 @@ TEST_CASE("camera: project agrees with view x projection and rayAt inverts it", 
     CHECK_FALSE(c.project(c.eye() - c.forward()).visible); // behind the eye
 }
 
-TEST_CASE("camera: frame keeps the box in view; presets look along the axes", "[camera]") {
+TEST_CASE("camera: frame keeps the box in view, presets look along the axes", "[camera]") {
     Camera c(640, 480);
     const Vec3 lo{-3, -1, 0}, hi{2, 4, 6};
     for (ViewPreset preset : {ViewPreset::Perspective, ViewPreset::Top, ViewPreset::Front, ViewPreset::Side}) {

@@ -34,12 +34,13 @@ TEST_CASE("event script: every verb parses to the event a window would send", "[
 
 TEST_CASE("event script: drag expands to move, press, moves with frames, release", "[events]") {
     const auto steps = parseEventScript("drag left 100 200 100 240 4");
-    // move, press, frame, 4 x (move, frame), release
-    REQUIRE(steps.size() == 3 + 8 + 1);
+    // move, frame, press, frame, 4 x (move, frame), release
+    REQUIRE(steps.size() == 4 + 8 + 1);
     CHECK(std::get<InputEvent>(steps[0].what) == InputEvent{MouseMove{100, 200}});
-    CHECK(std::get<InputEvent>(steps[1].what) == InputEvent{MousePress{MouseButton::Left, {}}});
-    CHECK(std::get<InputEvent>(steps[3].what) == InputEvent{MouseMove{100, 210}});
-    CHECK(std::get<InputEvent>(steps[9].what) == InputEvent{MouseMove{100, 240}});
+    CHECK(std::get<FrameWait>(steps[1].what).frames == 1);
+    CHECK(std::get<InputEvent>(steps[2].what) == InputEvent{MousePress{MouseButton::Left, {}}});
+    CHECK(std::get<InputEvent>(steps[4].what) == InputEvent{MouseMove{100, 210}});
+    CHECK(std::get<InputEvent>(steps[10].what) == InputEvent{MouseMove{100, 240}});
     CHECK(std::get<InputEvent>(steps.back().what) == InputEvent{MouseRelease{MouseButton::Left, {}}});
 }
 

@@ -19,7 +19,7 @@ double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(
 
 } // namespace
 
-TEST_CASE("live relaxer: preview publishes a settled soft shape; refine converges at full stiffness", "[live]") {
+TEST_CASE("live relaxer: preview publishes a settled soft shape, refine converges at full stiffness", "[live]") {
     Scene scene; // drawn in to the ring below: a taut net that settles in a fraction of a second
     scene.doc.execute(ConnectToRailCommand{scene.net, scene.ring, 0, false});
     const MassSpringSystem& system = scene.doc.compiled().system;

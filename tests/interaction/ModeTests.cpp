@@ -44,7 +44,7 @@ TEST_CASE("new net: a click on the third rail sphere hangs a default piece from 
     CHECK(scene.doc.hash() == before);
 }
 
-TEST_CASE("new net: a click on an open rail spans it; a click on a last row hangs a piece with gear 1",
+TEST_CASE("new net: a click on an open rail spans it, a click on a last row hangs a piece with gear 1",
           "[interaction]") {
     Scene scene;
     Interaction ui(scene.doc, scene.camera);
@@ -125,7 +125,7 @@ TEST_CASE("divide: a click on a top knot splits the piece at that column", "[int
     CHECK(scene.doc.compiled().system.knotCount() == knots); // a split changes ownership only
 }
 
-TEST_CASE("columns: on a rail a drag up adds columns; below a piece it steps through the gears", "[interaction]") {
+TEST_CASE("columns: on a rail a drag up adds columns, below a piece it steps through the gears", "[interaction]") {
     Scene scene;
     Interaction ui(scene.doc, scene.camera);
     ui.setMode(Mode::Columns);

@@ -171,3 +171,21 @@ TEST_CASE("studio: without relaxation the net is drawn exactly where the camera 
         for (int x = 330; x < 420; ++x) stray += netColoured(image.at(x, y), colours);
     CHECK(stray == 0);
 }
+
+TEST_CASE("studio: a Lua script's commands become the session's journal") {
+    const fs::path out = fs::path(NETSCULPT_BINARY_DIR) / "tests" / "studio" / "script";
+    fs::remove_all(out);
+    fs::create_directories(out);
+    const fs::path script = fs::path(NETSCULPT_SOURCE_DIR) / "scripts/paper/fig07_gears.lua";
+    const std::string command = "xvfb-run -a -s \"-screen 0 1280x800x24\" \"" + std::string(NETSCULPT_STUDIO_EXE) +
+                                "\" --script \"" + script.string() + "\" --journal \"" + (out / "out.netj").string() +
+                                "\" --exit-after-frames 5 --no-relax > \"" + (out / "log.txt").string() + "\" 2>&1";
+    REQUIRE(std::system(command.c_str()) == 0);
+    // fig07 hangs one child below each of five tubes of 24 columns, through gears 3, 2, 1, 1/2, 1/3.
+    const JournalContents journal = readJournal(out / "out.netj");
+    std::vector<std::string> gears;
+    for (const JournalEntry& entry : journal.entries)
+        if (const auto* attach = std::get_if<AttachToPieceCommand>(&entry.command))
+            gears.push_back(toString(attach->args.gear));
+    CHECK(gears == std::vector<std::string>{"3", "2", "1", "1/2", "1/3"});
+}

@@ -14,9 +14,9 @@
 #include "model/Error.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
@@ -191,7 +191,7 @@ void App::frame() {
     ImGui_ImplGlfw_NewFrame();
     if (options_.play) { // replayed events drive ImGui's mouse as well
         ImGuiIO& io = ImGui::GetIO();
-        io.MousePos = ImVec2(float(cursorX_), float(cursorY_));
+        io.MousePos = cursorKnown_ ? ImVec2(float(cursorX_), float(cursorY_)) : ImVec2(-FLT_MAX, -FLT_MAX);
         for (int b = 0; b < 3; ++b) io.MouseDown[b] = buttonDown_[b];
     }
     ImGui::NewFrame();
@@ -232,11 +232,11 @@ void App::dispatch(const InputEvent& event) {
     Interaction& ui = *interaction_;
     if (const auto* move = std::get_if<MouseMove>(&event)) {
         cursorX_ = move->x, cursorY_ = move->y;
+        cursorKnown_ = true;
         ui.handle(event);
     } else if (const auto* press = std::get_if<MousePress>(&event)) {
         buttonDown_[int(press->button)] = true;
         notice_.clear();
-        if (std::getenv("NS_DEBUG")) std::printf("press at %g %g ui %d hovered %d\n", cursorX_, cursorY_, int(uiHasMouse), ui.hovered());
         if (!uiHasMouse && !restorePending_) ui.handle(event);
     } else if (const auto* release = std::get_if<MouseRelease>(&event)) {
         buttonDown_[int(release->button)] = false;

@@ -110,6 +110,7 @@ class App {
     long long resumeAtFrame_ = 0;
     long long frameIndex_ = 0;
     double cursorX_ = 0, cursorY_ = 0;
+    bool cursorKnown_ = false; ///< no MouseMove yet: ImGui is told the mouse is away
     bool buttonDown_[3] = {false, false, false};
 
     std::uint64_t shownVersion_ = 0;     ///< interaction version the renderer and relaxer have

@@ -1,8 +1,7 @@
 #pragma once
-// "Run a Lua script" in the studio, behind a small interface: the script's commands go through
-// the studio's document (so they are journaled and undoable like gestures). The Lua binding
-// (scripting/) provides the implementation; until it is wired in, makeScriptRunner() returns null
-// and the studio says that scripts are not available in this build.
+// "Run a Lua script" in the studio: the script runs in the sandbox of scripting/ScriptHost.h, and
+// its commands are replayed through the studio's document (so they are journaled and undoable
+// like gestures). A script builds a new sculpture, so the document must be new.
 
 #include "commands/Document.h"
 
@@ -19,7 +18,7 @@ class ScriptRunner {
     virtual void run(Document& doc, const std::filesystem::path& script) = 0;
 };
 
-/// The runner of this build, or null when the studio was built without the Lua binding.
+/// The runner of this build (null would mean a studio without the Lua binding).
 std::unique_ptr<ScriptRunner> makeScriptRunner();
 
 } // namespace netsculpt::studio

@@ -267,6 +267,12 @@ BulletScene::BulletScene(const MassSpringSystem& system, const BulletSettings& s
         link.m_bbending = 0;
     }
     body_->m_bUpdateRtCst = false;
+    {
+        double shortest = std::numeric_limits<double>::infinity();
+        for (double l : system.restLength) shortest = std::min(shortest, l);
+        static const double md = getenv("MAXDISP") ? atof(getenv("MAXDISP")) : 0;
+        if (md > 0) world_->getWorldInfo().m_maxDisplacement = md * shortest;
+    }
     body_->m_cfg.collisions = 0; // no self-collision: Eq. 3 has none
     body_->m_cfg.drag = 0;
     body_->setActivationState(DISABLE_DEACTIVATION);

@@ -43,8 +43,10 @@ static const double kBlendTolerance = tuneParam("kBlendTolerance", 1e-3);
 static const double kDampingStart = tuneParam("kDampingStart", 1);
 static const double kDampingMin = tuneParam("kDampingMin", 1e-3);
 static const double kDampingUp = tuneParam("kDampingUp", 4);
-static const double kDampingDown = tuneParam("kDampingDown", 1.0 / 3);
+static const double kDampingDown = tuneParam("kDampingDown", 0.1);
 static const double kDampingCut = tuneParam("kDampingCut", 0.5);
+static const double kRatioGood = tuneParam("kRatioGood", 0.75);
+static const double kRatioPoor = tuneParam("kRatioPoor", 0.25);
 // A start is warm (no soft stage) when at least this share of the bars is stretched by more
 // than kTautStrain (the bars already carry the load; their tensions seed the mixed Newton) ...
 constexpr double kWarmTautShare = 0.5;
@@ -159,6 +161,7 @@ class NewtonRun {
     double evaluate(const std::vector<Vec3>& at);
     void setScale(double scale);
     void setCompression(double blend);
+    bool anyCompressed() const;
     void elasticTensions();
     void assemble(bool mixed, bool exact);
     bool factorize();
@@ -273,6 +276,16 @@ void NewtonRun::setCompression(double blend) {
         field_ = ForceField(blended);
     }
     field_.setLoad(options_.wind, scale_);
+}
+
+/// Whether some bar whose compression stiffness differs from its tension one is shorter than its
+/// rest length at x_.
+bool NewtonRun::anyCompressed() const {
+    for (std::size_t b = 0; b < system_.barCount(); ++b)
+        if (system_.kCompression[b] != system_.kTension[b] &&
+            distance(x_[system_.barA[b]], x_[system_.barB[b]]) < system_.restLength[b])
+            return true;
+    return false;
 }
 
 /// tension_ = s k (l - l_eq) at x_: the elastic tensions at the current scale.
@@ -508,15 +521,23 @@ RelaxResult NewtonRun::run() {
 
     if (analysis_.freeKnots.empty() || residual_ < tolerance)
         stopReason_ = "converged";
+    bool slack = false;
     for (std::size_t stageIndex = 0; stageIndex < stages.size() && stopReason_.empty(); ++stageIndex) {
         const Stage& stage = stages[stageIndex];
-        if (stageIndex > 0 || stage.scale != 1.0 || stage.blend != 0) {
+        // The first soft stage tells a slack net (bars in compression at its equilibrium) from
+        // a taut one; only a slack one gets the stiffer compression and the damping after it.
+        if (stageIndex == 1)
+            slack = anyCompressed();
+        const double blend = stageIndex > 0 && slack ? stage.blend : 0.0;
+        if (stage.blend > 0 && stage.scale == 1.0 && blend == 0)
+            continue;
+        if (stageIndex > 0 || stage.scale != 1.0) {
             // Tensions of the previous stage's equilibrium (or of the warm start) seed the
             // mixed stage; then the new stiffness.
             if (stage.mixed)
                 elasticTensions();
             setScale(stage.scale);
-            setCompression(stage.blend);
+            setCompression(blend);
             residual_ = evaluate(x_);
         } else if (stage.mixed) {
             elasticTensions();
@@ -525,7 +546,8 @@ RelaxResult NewtonRun::run() {
         double best = residual_;
         int sinceBest = 0;
         shift_ = kMinShift;
-        damping_ = kDampingStart;
+        if (stageIndex == 1 && slack) // later stages go on with the previous one's
+            damping_ = kDampingStart;
         const std::int64_t stageStart = steps_;
         int exactPause = 0; // iterations left before the exact Hessian is tried again
 
@@ -568,6 +590,7 @@ RelaxResult NewtonRun::run() {
 
             double alpha = 1;
             bool accepted = false;
+            double fullChange = 0; // energy change of the full step (energy line search)
             if (mixed) {
                 for (int k = 0; k < kMaxBacktracks && !accepted; ++k, alpha *= 0.5) {
                     for (std::uint32_t j : analysis_.freeKnots)
@@ -589,6 +612,8 @@ RelaxResult NewtonRun::run() {
             } else if (slope > 0) {
                 for (int k = 0; k < kMaxBacktracks; ++k) {
                     const double change = energyChange(alpha);
+                    if (k == 0)
+                        fullChange = change;
                     if (std::isfinite(change) && change <= -kArmijo * alpha * slope) {
                         accepted = true;
                         break;
@@ -626,10 +651,21 @@ RelaxResult NewtonRun::run() {
                              (long long)steps_, scale_, (int)mixed, (int)(exact && exactPause == 0), alpha, shift_, residual_, damping_);
             if (alpha == 1.0)
                 shift_ = std::max(shift_ * 0.1, kMinShift);
-            if (!mixed) {
-                if (alpha == 1.0)
+            if (!mixed && !windy_ && slack) {
+                // Trust-region style update of the weight-scaled shift from the ratio of the
+                // full step's actual to predicted decrease (model: E - F.p + 1/2 p.H p, with
+                // (H + D) p = F, so the prediction is 1/2 (F.p + p.D p)).
+                double damped = 0;
+                if (damping_ > 0)
+                    for (std::size_t f = 0; f < dampingUnit_.size(); ++f) {
+                        const Vec3& p = step_[analysis_.freeKnots[f]];
+                        damped += damping_ * dampingUnit_[f] * p.dot(p);
+                    }
+                const double predicted = 0.5 * (slope + damped);
+                const double ratio = predicted > 0 ? -fullChange / predicted : 0.0;
+                if (alpha == 1.0 && ratio > kRatioGood)
                     damping_ = damping_ * kDampingDown < kDampingMin ? 0.0 : damping_ * kDampingDown;
-                else if (alpha < kDampingCut)
+                else if (alpha < kDampingCut || ratio < kRatioPoor)
                     damping_ = std::max(damping_ * kDampingUp, kDampingMin);
             }
             if (mixed) {
