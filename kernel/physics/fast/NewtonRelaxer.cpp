@@ -12,41 +12,45 @@
 #include <limits>
 #include <string>
 #include <thread>
-#include <cstdio>
-#include <cstdlib>
 
 namespace netsculpt {
 
 namespace {
 
-double tuneParam(const char* name, double value) {
-    const char* v = std::getenv(name);
-    return v ? std::atof(v) : value;
-}
-
 // Soft stage: EA scaled down to kSoftLoadFactor times the mean load per held knot (strains of a
 // few per cent at the top of a net; the same floor as RK4's first continuation stage). No soft
 // stage when that would not soften the material by at least kMaxSoftScale.
-static const double kSoftLoadFactor = tuneParam("kSoftLoadFactor", 20);
+constexpr double kSoftLoadFactor = 20;
 constexpr double kMaxSoftScale = 0.1;
 // Then stages kStageFactor times stiffer each (the last intermediate one at least
 // sqrt(kStageFactor) below the material's): a tension-dominated net needs none (the jump from the
 // soft stage to the material costs three or four iterations), a slack one needs them because the
 // shape of its slack parts changes with the stiffness. Each soft stage only has to bring the shape
 // near the next one: it stops at kSoftTolerance.
-static const double kStageFactor = tuneParam("kStageFactor", 100);
-static const double kSoftTolerance = tuneParam("kSoftTolerance", 1e-1);
-constexpr bool kIntermediate = true;
-static const double kSoftBlend = tuneParam("kSoftBlend", 1);
+constexpr double kStageFactor = 100;
+constexpr double kSoftTolerance = 1e-1;
+// A slack net (bars in compression at the first soft stage's equilibrium) is then taken to the
+// material's stiffness first with compression stiffness max(k_c, blend k_s) for each blend of
+// kFinalBlends (1: the energy has no kink at the rest length, so bars hovering at zero tension
+// in the slack parts do not make Newton chatter), down to kBlendTolerance, and only then with
+// the material's k_c (the compressed bars then shorten by ~1e-6 of a bar: one or two mixed
+// iterations).
 constexpr std::array<double, 1> kFinalBlends = {1};
-static const double kBlendTolerance = tuneParam("kBlendTolerance", 1e-3);
-static const double kDampingStart = tuneParam("kDampingStart", 1);
-static const double kDampingMin = tuneParam("kDampingMin", 1e-3);
-static const double kDampingUp = tuneParam("kDampingUp", 4);
-static const double kDampingDown = tuneParam("kDampingDown", 0.1);
-static const double kDampingCut = tuneParam("kDampingCut", 0.5);
-static const double kRatioGood = tuneParam("kRatioGood", 0.75);
-static const double kRatioPoor = tuneParam("kRatioPoor", 0.25);
+constexpr double kBlendTolerance = 1e-3;
+// Slack nets, energy stages after the first: a second Levenberg shift lambda_D D, D = diag(m_j |g|
+// / mean rest length) (the geometric stiffness of a bar carrying one knot's weight, the scale of
+// the soft modes of slack parts that the line search would otherwise cut the whole step for),
+// driven like a trust region: starts at kDampingStart, is multiplied by kDampingDown after a full
+// step whose energy decrease is more than kRatioGood of the model's (dropped below kDampingMin),
+// and by kDampingUp (at least kDampingMin) when the step was cut below kDampingCut or the ratio
+// is below kRatioPoor. It carries over from stage to stage.
+constexpr double kDampingStart = 1;
+constexpr double kDampingMin = 1e-3;
+constexpr double kDampingUp = 4;
+constexpr double kDampingDown = 0.1;
+constexpr double kDampingCut = 0.5;
+constexpr double kRatioGood = 0.75;
+constexpr double kRatioPoor = 0.25;
 // A start is warm (no soft stage) when at least this share of the bars is stretched by more
 // than kTautStrain (the bars already carry the load; their tensions seed the mixed Newton) ...
 constexpr double kWarmTautShare = 0.5;
@@ -510,9 +514,9 @@ RelaxResult NewtonRun::run() {
     };
     std::vector<Stage> stages;
     if (softScale < 1.0) {
-        stages.push_back({softScale, std::max(kSoftTolerance, tolerance), false, kSoftBlend});
-        for (double s = softScale * kStageFactor; s < 1 / std::sqrt(kStageFactor) && kIntermediate; s *= kStageFactor)
-            stages.push_back({s, std::max(kSoftTolerance, tolerance), false, kSoftBlend});
+        stages.push_back({softScale, std::max(kSoftTolerance, tolerance), false, 0.0});
+        for (double s = softScale * kStageFactor; s < 1 / std::sqrt(kStageFactor); s *= kStageFactor)
+            stages.push_back({s, std::max(kSoftTolerance, tolerance), false, 0.0});
         for (double blend : kFinalBlends)
             if (blend > 0)
                 stages.push_back({1.0, std::max(kBlendTolerance, tolerance), true, blend});
@@ -646,9 +650,6 @@ RelaxResult NewtonRun::run() {
                 shift_ = std::max(shift_ * 10, kFailShift);
             takeStep(alpha, mixed);
             residual_ = evaluate(x_);
-            if (std::getenv("NS_TRACE"))
-                std::fprintf(stderr, "it %lld scale %.3g mixed %d exact %d alpha %.3g shift %.3g res %.3g damp %.3g\n",
-                             (long long)steps_, scale_, (int)mixed, (int)(exact && exactPause == 0), alpha, shift_, residual_, damping_);
             if (alpha == 1.0)
                 shift_ = std::max(shift_ * 0.1, kMinShift);
             if (!mixed && !windy_ && slack) {

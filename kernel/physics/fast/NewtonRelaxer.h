@@ -29,6 +29,11 @@
 //   k (l - l_eq) at the new positions, so a step that rotates a stiff bar is not punished for
 //   the second-order stretch it would cause. If it stalls it falls back to the energy line
 //   search. A warm start (most bars already taut) goes to the material's stiffness directly.
+// - Slack nets (bars in compression at the first soft stage's equilibrium): the energy stages
+//   after the first add a second, trust-region-driven Levenberg shift scaled by the knots'
+//   weights per bar length (the soft modes of slack parts otherwise make the line search cut
+//   every step), and the material's stiffness is reached first with k_c raised to k_s (no kink
+//   at the rest length for the many bars near zero tension), then with the material's k_c.
 // - Slack bars: each iteration first tries the exact Hessian (the negative geometric stiffness
 //   of compressed bars included), which converges quadratically near a stable equilibrium with
 //   slack parts, and uses the projected one when that is not positive definite.
