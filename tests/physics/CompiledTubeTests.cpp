@@ -4,6 +4,7 @@
 // row), solved in this test by Newton's method on 2 (rows - 1) equations.
 
 #include "../model/TestSculptures.h"
+#include "DampedNewton.h"
 
 #include "physics/Forces.h"
 #include "physics/ReferenceNets.h"
@@ -68,22 +69,7 @@ std::vector<std::array<double, 2>> solveAxisymmetric(const TubeCase& k, std::vec
     };
     Eigen::VectorXd x(2 * n);
     for (int r = 1; r <= n; ++r) x.segment<2>(2 * (r - 1)) << rows[r][0], rows[r][1];
-    for (int iteration = 0; iteration < 100; ++iteration) {
-        const Eigen::VectorXd f = residual(x);
-        if (f.lpNorm<Eigen::Infinity>() < 1e-14) break;
-        Eigen::MatrixXd jacobian(2 * n, 2 * n);
-        for (int j = 0; j < 2 * n; ++j) {
-            Eigen::VectorXd step = x;
-            const double h = 1e-7 * std::max(1.0, std::abs(x[j]));
-            step[j] += h;
-            jacobian.col(j) = (residual(step) - f) / h;
-        }
-        // Damped Newton: halve the step until the residual decreases.
-        const Eigen::VectorXd step = jacobian.fullPivLu().solve(f);
-        double scale = 1;
-        while (scale > 1e-6 && residual(x - scale * step).norm() >= f.norm()) scale *= 0.5;
-        x -= scale * step;
-    }
+    x = dampedNewton(residual, x);
     REQUIRE(residual(x).lpNorm<Eigen::Infinity>() < 1e-11);
     for (int r = 1; r <= n; ++r) rows[r] = {x[2 * (r - 1)], x[2 * (r - 1) + 1]};
     return rows;

@@ -1,0 +1,33 @@
+#pragma once
+// A small damped Newton solver for the tests' independent reference problems (reductions of a
+// net to a few unknowns): finite-difference Jacobian, full-pivot LU, step halving until the
+// residual norm decreases.
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+
+namespace netsculpt::test {
+
+/// Solves f(x) = 0 from x; returns the root (check f at it: the caller decides what is enough).
+template <typename F> Eigen::VectorXd dampedNewton(const F& f, Eigen::VectorXd x, int iterations = 200) {
+    for (int iteration = 0; iteration < iterations; ++iteration) {
+        const Eigen::VectorXd value = f(x);
+        if (value.lpNorm<Eigen::Infinity>() < 1e-14) break;
+        Eigen::MatrixXd jacobian(x.size(), x.size());
+        for (Eigen::Index j = 0; j < x.size(); ++j) {
+            Eigen::VectorXd shifted = x;
+            const double h = 1e-7 * std::max(1.0, std::abs(x[j]));
+            shifted[j] += h;
+            jacobian.col(j) = (f(shifted) - value) / h;
+        }
+        const Eigen::VectorXd step = jacobian.fullPivLu().solve(value);
+        double scale = 1;
+        while (scale > 1e-6 && f(x - scale * step).norm() >= value.norm()) scale *= 0.5;
+        x -= scale * step;
+    }
+    return x;
+}
+
+} // namespace netsculpt::test
