@@ -26,8 +26,8 @@
 #include <numbers>
 #include <string>
 #include <vector>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 
 static_assert(sizeof(btScalar) == sizeof(double),
               "the Bullet backend needs Bullet in double precision (BT_USE_DOUBLE_PRECISION)");
@@ -47,19 +47,19 @@ constexpr double kStepPeriods = 100;
 // the inertia M / dt^2 resists sideways motion; a long first step would throw the net about.
 constexpr double kFirstStepFall = 0.1;
 // Step control (switched evolution relaxation): dt *= previous residual / residual, clamped.
-static const double kStepShrink = getenv("SHRINK") ? atof(getenv("SHRINK")) : 0.5;
-static const double kStepGrowth = getenv("GROW") ? atof(getenv("GROW")) : 4;
-static const double kSerPower = getenv("SERPOW") ? atof(getenv("SERPOW")) : 1;
+constexpr double kStepShrink = 0.5;
+constexpr double kStepGrowth = 4;
 // A residual of Bullet's model above kBlowUpFactor times the stage's best is a blow-up: back to
 // the best state, at rest, with a quarter of the step; a step below kMinStepFraction of the
 // first: diverged.
 constexpr double kBlowUpFactor = 1e3;
+constexpr double kRejectGrowth = 10;
 constexpr double kMinStepFraction = 1e-6;
 // Newton's exact matrix (compressed links included) is used once the residual of Bullet's model
 // is below this; a step with it that raises the residual is undone, and the positive matrix is
 // used for the next kFullMatrixPause steps.
-static const double kFullMatrixBelow = getenv("FULLBELOW") ? atof(getenv("FULLBELOW")) : 1e-2;
-static const std::int64_t kFullMatrixPause = getenv("PAUSE") ? atoi(getenv("PAUSE")) : 8;
+constexpr double kFullMatrixBelow = 1e-2;
+constexpr std::int64_t kFullMatrixPause = 8;
 // Continuation, as in the RK4 backend: soft stages stop at this residual of Bullet's model (they
 // only bring the shape near the next stage's), and the first stage keeps EA at least this many
 // times the mean load per held knot.
@@ -160,7 +160,6 @@ class StaticDeformableSolver final : public btDeformableBodySolver {
         m_maxNewtonIterations = newtonIterations;
         m_newtonTolerance = 0; // run all of them
         m_cg.m_maxIterations = conjugateGradientIterations;
-        if (getenv("CGTOL")) m_cg.setTolerance(atof(getenv("CGTOL")));
     }
 };
 
@@ -244,7 +243,7 @@ BulletScene::BulletScene(const MassSpringSystem& system, const BulletSettings& s
     // on face-rigid contacts, of which a net has none.
     world_->setImplicit(true);
     world_->setUseProjection(true);
-    world_->setLineSearch(false);
+    world_->setLineSearch(std::getenv("LS") != nullptr);
 
     const std::size_t knots = system.knotCount();
     std::vector<btVector3> x(knots);
@@ -267,12 +266,7 @@ BulletScene::BulletScene(const MassSpringSystem& system, const BulletSettings& s
         link.m_bbending = 0;
     }
     body_->m_bUpdateRtCst = false;
-    {
-        double shortest = std::numeric_limits<double>::infinity();
-        for (double l : system.restLength) shortest = std::min(shortest, l);
-        static const double md = getenv("MAXDISP") ? atof(getenv("MAXDISP")) : 0;
-        if (md > 0) world_->getWorldInfo().m_maxDisplacement = md * shortest;
-    }
+
     body_->m_cfg.collisions = 0; // no self-collision: Eq. 3 has none
     body_->m_cfg.drag = 0;
     body_->setActivationState(DISABLE_DEACTIVATION);
@@ -315,9 +309,12 @@ void validate(const BulletSettings& s) {
         fail("linkDamping", s.linkDamping, "a finite number >= 0");
 }
 
-/// The continuation's first stiffness scale, as the RK4 backend chooses it (Relaxer.cpp): the
-/// option's preview scale, but never so soft that the mean load per held knot exceeds
-/// 1/kPreviewLoadFactor of the softest bar's EA.
+/// The continuation's first stiffness scale: the softest the RK4 backend allows (Relaxer.cpp),
+/// where the softest bar's EA is kPreviewLoadFactor times the mean load per held knot. Bullet's
+/// steps are Newton steps, which need the first stage's strains modest, not the shape close:
+/// a stiffer start (RelaxOptions::previewStiffnessScale) made stiff nets whose initial geometry
+/// is far from their rest shape (a last row connected to a distant rail) cycle without end. More
+/// stages cost little: each one starts near its rest shape and takes a few steps.
 double firstStageScale(const MassSpringSystem& system, const RelaxOptions& options) {
     if (!options.continuation)
         return 1.0;
@@ -329,7 +326,7 @@ double firstStageScale(const MassSpringSystem& system, const RelaxOptions& optio
         held += f;
     const double meanHeldLoad = totalWeight(system) / double(std::max<std::size_t>(held, 1));
     const double floor = kPreviewLoadFactor * meanHeldLoad / minAxialStiffness;
-    return std::min(1.0, std::max(options.previewStiffnessScale, floor));
+    return std::min(1.0, floor);
 }
 
 /// Max over free knots of |F_j| / (m_j |g|) for the field at positions (+inf if not finite).
@@ -357,8 +354,12 @@ RelaxResult BulletRelaxer::relax(MassSpringSystem& system, const RelaxOptions& o
     const auto start = Clock::now();
     auto seconds = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
     validate(options);
-    if (options.wind)
-        throw UserError("relax: backend \"bullet\" has no wind load; use backend \"rk4\" for wind");
+    if (options.wind) {
+        validatedWindDirection(*options.wind);
+        if (options.wind->pressure > 0)
+            throw UserError("relax: backend \"bullet\" has no wind load (wind pressure " +
+                            formatNumber(options.wind->pressure) + " N/m); use backend \"rk4\" for wind");
+    }
 
     ForceField project(system); // validates the system
     const std::size_t knots = system.knotCount();
@@ -433,8 +434,9 @@ RelaxResult BulletRelaxer::relax(MassSpringSystem& system, const RelaxOptions& o
             options.progress(progress);
     };
 
-    // The state returned: in the last stage the lowest residual of Eq. 3 seen; before it, the
-    // last state (the shape is then only a preview).
+    // The state returned: in the last stage the lowest residual of Bullet's model seen (its rest
+    // shape, which is what a cross-check wants even where Eq. 3 judges it worse than a state on
+    // the way); before the last stage, the last state (the shape is then only a preview).
     std::vector<Vec3> best = positions;
     double bestResidual = std::numeric_limits<double>::infinity();
     // The restart state after a blow-up: the lowest residual of Bullet's model in the stage.
@@ -452,8 +454,6 @@ RelaxResult BulletRelaxer::relax(MassSpringSystem& system, const RelaxOptions& o
         restResidual = acceptedResidual = ownResidual(projectResidual());
         restState = accepted = positions;
         bestResidual = std::numeric_limits<double>::infinity();
-        static const bool resetStep = getenv("RESETDT") != nullptr;
-        if (resetStep) step = firstStep;
     };
     if (stopReason.empty())
         beginStage();
@@ -468,8 +468,8 @@ RelaxResult BulletRelaxer::relax(MassSpringSystem& system, const RelaxOptions& o
         const bool finite = scene->readPositions(positions);
         const double r = finite ? projectResidual() : std::numeric_limits<double>::infinity();
         const double own = std::isfinite(r) ? ownResidual(r) : r;
-        static const bool dbg = getenv("DBG") != nullptr;
-        if (dbg) fprintf(stderr, "DBG step %lld scale %.3g dt %.3g full %d own %.3e acc %.3e ratio %.3f\n", (long long)steps, scale, step, int(fullMatrix), own, acceptedResidual, own / acceptedResidual);
+        static const bool dbg = std::getenv("DBG") != nullptr; // TEMP
+        if (dbg) std::fprintf(stderr, "DBG step %lld scale %.3g dt %.3g full %d own %.3e acc %.3e rest %.3e ratio %.3f\n", (long long)steps, scale, step, int(fullMatrix), own, acceptedResidual, restResidual, own / acceptedResidual);
         if (!(own <= kBlowUpFactor * restResidual)) {
             // Blow-up (or not finite): back to the stage's best state, at rest, shorter step.
             scene->writePositions(restState);
@@ -482,6 +482,13 @@ RelaxResult BulletRelaxer::relax(MassSpringSystem& system, const RelaxOptions& o
                 stopReason = "diverged";
                 break;
             }
+        } else if (own > kRejectGrowth * acceptedResidual) {
+            // Much worse than the state the step started from: undo it, retry with half the step.
+            scene->writePositions(accepted);
+            positions = accepted;
+            step *= 0.5;
+            if (fullMatrix)
+                fullMatrixFrom = steps + kFullMatrixPause;
         } else if (fullMatrix && own > acceptedResidual) {
             // The exact matrix did worse than the state it started from (a compressed link made
             // it indefinite): undo the step, go on with the positive matrix for a while.
@@ -493,8 +500,8 @@ RelaxResult BulletRelaxer::relax(MassSpringSystem& system, const RelaxOptions& o
                 restResidual = own;
                 restState = positions;
             }
-            if (scale < 1.0 || r < bestResidual) {
-                bestResidual = r;
+            if (scale < 1.0 || own < bestResidual) {
+                bestResidual = own;
                 best = positions;
             }
             if (scale < 1.0) {
@@ -514,7 +521,7 @@ RelaxResult BulletRelaxer::relax(MassSpringSystem& system, const RelaxOptions& o
             // Switched evolution relaxation: the step grows as the residual falls (a Newton step
             // in the limit) and shrinks when it rises.
             if (settings_.adaptiveTimeStep)
-                step = std::min(maxStep, step * std::clamp(std::pow(acceptedResidual / own, kSerPower), kStepShrink, kStepGrowth));
+                step = std::min(maxStep, step * std::clamp(acceptedResidual / own, kStepShrink, kStepGrowth));
             accepted = positions;
             acceptedResidual = own;
         }
