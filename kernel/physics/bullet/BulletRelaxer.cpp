@@ -26,8 +26,6 @@
 #include <numbers>
 #include <string>
 #include <vector>
-#include <cstdio>
-#include <cstdlib>
 
 static_assert(sizeof(btScalar) == sizeof(double),
               "the Bullet backend needs Bullet in double precision (BT_USE_DOUBLE_PRECISION)");
@@ -84,7 +82,26 @@ Vec3 fromBullet(const btVector3& v) { return {v.x(), v.y(), v.z()}; }
 class NetSpringForce final : public btDeformableMassSpringForce {
   public:
     NetSpringForce(std::vector<btScalar> stiffness, btScalar damping)
-        : btDeformableMassSpringForce(1.0, damping, true), stiffness_(std::move(stiffness)) {}
+        : btDeformableMassSpringForce(1.0, damping, true), stiffness_(std::move(stiffness)),
+          damped_(damping > 0) {}
+
+    // Without damping (the default) Bullet would still walk every link, normalising its
+    // direction, in each conjugate-gradient product; skip that.
+    void addScaledDampingForce(btScalar scale, TVStack& force) override {
+        if (damped_)
+            btDeformableMassSpringForce::addScaledDampingForce(scale, force);
+    }
+    void addScaledDampingForceDifferential(btScalar scale, const TVStack& dv, TVStack& df) override {
+        if (damped_)
+            btDeformableMassSpringForce::addScaledDampingForceDifferential(scale, dv, df);
+    }
+    void buildDampingForceDifferentialDiagonal(btScalar scale, TVStack& diagA) override {
+        if (damped_)
+            btDeformableMassSpringForce::buildDampingForceDifferentialDiagonal(scale, diagA);
+    }
+    double totalDampingEnergy(btScalar dt) override {
+        return damped_ ? btDeformableMassSpringForce::totalDampingEnergy(dt) : 0.0;
+    }
 
     void addScaledElasticForce(btScalar scale, TVStack& force) override {
         for (int i = 0; i < m_softBodies.size(); ++i) {
@@ -150,6 +167,7 @@ class NetSpringForce final : public btDeformableMassSpringForce {
   private:
     bool fullMatrix_ = false;
     std::vector<btScalar> stiffness_; ///< N/m per link
+    bool damped_;
 };
 
 /// Bullet's deformable solver with the knobs it keeps protected: Newton iterations per step and
@@ -243,7 +261,10 @@ BulletScene::BulletScene(const MassSpringSystem& system, const BulletSettings& s
     // on face-rigid contacts, of which a net has none.
     world_->setImplicit(true);
     world_->setUseProjection(true);
-    world_->setLineSearch(std::getenv("LS") != nullptr);
+    // Bullet's energy line search (setLineSearch) was tried: its backtracking gives up (no update
+    // at all) below a step scale of 1e-8, which here happened at most steps; the step control in
+    // relax() does better.
+    world_->setLineSearch(false);
 
     const std::size_t knots = system.knotCount();
     std::vector<btVector3> x(knots);
@@ -468,8 +489,6 @@ RelaxResult BulletRelaxer::relax(MassSpringSystem& system, const RelaxOptions& o
         const bool finite = scene->readPositions(positions);
         const double r = finite ? projectResidual() : std::numeric_limits<double>::infinity();
         const double own = std::isfinite(r) ? ownResidual(r) : r;
-        static const bool dbg = std::getenv("DBG") != nullptr; // TEMP
-        if (dbg) std::fprintf(stderr, "DBG step %lld scale %.3g dt %.3g full %d own %.3e acc %.3e rest %.3e ratio %.3f\n", (long long)steps, scale, step, int(fullMatrix), own, acceptedResidual, restResidual, own / acceptedResidual);
         if (!(own <= kBlowUpFactor * restResidual)) {
             // Blow-up (or not finite): back to the stage's best state, at rest, shorter step.
             scene->writePositions(restState);

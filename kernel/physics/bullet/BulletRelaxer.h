@@ -1,90 +1,102 @@
 #pragma once
 // The cross-check backend (DESIGN.md "Physics", issue 6): the compiled mass-spring system relaxed
-// by Bullet's deformable-body solver (btDeformableMultiBodyDynamicsWorld, implicit backward Euler,
-// btDeformableMassSpringForce). Built only with NETSCULPT_WITH_BULLET (NETSCULPT_HAVE_BULLET is
-// then defined); this header names no Bullet type, so it can be included anywhere.
+// by Bullet's deformable-body solver: btDeformableMultiBodyDynamicsWorld, implicit backward
+// Euler, a mass-spring force derived from btDeformableMassSpringForce. Built only with
+// NETSCULPT_WITH_BULLET (NETSCULPT_HAVE_BULLET is then defined); this header names no Bullet
+// type, so it can be included anywhere.
 //
-// Why the deformable world and not btSoftBody in a btSoftRigidDynamicsWorld: a classic soft
-// body link is a position-based constraint whose "linear stiffness" kLST in [0, 1] is a
-// per-iteration correction weight, so its equilibrium depends on iteration counts and time step
+// Why the deformable world and not btSoftBody in a btSoftRigidDynamicsWorld: a classic soft-body
+// link is a position-based constraint whose "linear stiffness" kLST in [0, 1] is a correction
+// weight per solver iteration, so its rest shape depends on iteration counts and the time step
 // and no kLST reproduces EA. The deformable world's mass-spring force is a physical spring,
 // f = k (|d| - l_rest) d/|d| with k in N/m, integrated implicitly: k = EA / l_eq maps one to one.
 //
-// How the two models differ, and what it means for agreement:
+// How Bullet's model differs from Eq. 3, and what it means for agreement:
 // - Tension and compression. Eq. 3 uses k_s when a bar is stretched and k_c =
-//   compression_ratio k_s when it is not; a Bullet link has one stiffness both ways. Bullet gets
-//   k_s (kTension). The equilibria coincide exactly when compression_ratio = 1, and also whenever
-//   no bar ends up shorter than its rest length (a net hanging in tension everywhere). Where bars
-//   are compressed (slack rope in reality) Bullet holds them up with the full k_s, so its shape is
-//   stiffer there, and the project's residual of Bullet's shape stays at about
-//   (k_s - k_c) |compression| / (m g) at those knots: Bullet cannot converge in the project's
-//   sense, and relax() then stops with stopReason "stalled" (see BulletRelaxer::relax).
-// - Per-link stiffness. btDeformableMassSpringForce holds one elastic stiffness for all the
-//   links of the bodies it acts on. When every bar has the same kTension (one material, one bar
-//   length) Bullet's class is used as is; otherwise a subclass that only replaces that one
-//   number by kTension of each link (same force and force differential formulas) is used.
-// - Mass. Bullet's nodes carry the knot masses of the system (kg), so gravity m_j g is the same;
-//   fixed knots are Bullet nodes of zero mass (inverse mass 0 = pinned, a Dirichlet constraint of
-//   the solver). Unlike the RK4 backend's fictitious masses these masses also set the dynamics,
-//   which only changes the path, not the rest state.
-// - Integration and damping. Bullet integrates M (v' - v) = dt F(x + dt v') (backward Euler) with
-//   one Newton step per time step, a conjugate-gradient solve preconditioned by the mass matrix,
-//   fixed knots projected out. With a time step far beyond the net's periods (the default) a
-//   step is in effect a regularised Newton step on F(x) = 0, so the shape converges to the same
-//   static state without physical damping; backward Euler's own dissipation removes the motion.
-//   The result does not depend on the step or the damping, only the path does.
+//   compression_ratio k_s when it is not; a Bullet link has one stiffness both ways, and gets
+//   k_s (kTension). The rest shapes coincide when compression_ratio = 1, and also when no bar
+//   ends up shorter than its rest length. Where bars are compressed (slack rope) Bullet holds
+//   them up with the full k_s: its shape is an equilibrium of Eq. 3 only up to the force
+//   (k_s - k_c)(l_eq - l) of each compressed bar, so the project's residual of Bullet's shape
+//   stays near that force over the knot's weight (about 1 for real rope) and relax() stops with
+//   "stalled". With slack bars a net can also have several rest shapes, and the two backends may
+//   settle in different ones from the same start (tests/physics_bullet/BulletRelaxerTests.cpp).
+// - Stiffness per link. btDeformableMassSpringForce holds one stiffness for all the links it acts
+//   on; a net's bars differ (k = EA / l_eq per piece and column), so a subclass keeps one per
+//   link. Its force is Bullet's formula. Its force differential (the matrix of the implicit step)
+//   is Bullet's too, except that a compressed link's negative transverse term is left out until
+//   the net is near rest: Bullet's conjugate-gradient solve gives up at the first direction of
+//   negative curvature, which compressed links bring in. That changes the path, not the rest
+//   shape.
+// - Mass. Bullet's nodes carry the knot masses (kg), so the weight m_j g is the same; fixed knots
+//   are nodes of zero mass (inverse mass 0 = pinned, projected out of the solve). The masses also
+//   set Bullet's dynamics, which only changes the path.
+// - Integration and damping. Each Bullet step solves M (v' - v) = dt F(x + dt v') (backward
+//   Euler, one Newton iteration, conjugate gradients preconditioned by the mass matrix). Between
+//   steps every node is stopped (kinetic damping), so a step is (M / dt^2 + K) dx = F: with a
+//   short step a damped motion, with a long one a Newton step on F = 0. The step grows as the
+//   residual falls (switched evolution relaxation) and a stiff net goes through stiffness
+//   continuation first, as the RK4 backend does. No physical damping is needed; the rest shape
+//   does not depend on any of this.
 // - Precision: Bullet is linked in double precision (BT_USE_DOUBLE_PRECISION, the -float64
-//   libraries), so positions are copied to and from Bullet without rounding.
+//   libraries), so positions go to and from Bullet without rounding.
 //
 // Determinism: Bullet's deformable solver runs on one thread; the same system and settings give
-// the same shape bit for bit on the same machine and build.
+// the same shape bit for bit on the same build (tested).
 
 #include "physics/Relaxer.h"
 
-#include <cstdint>
 #include <string_view>
 
 namespace netsculpt {
 
-/// Solver knobs of the Bullet backend. The defaults suit a static rest state; tests and the
-/// benchmark may change them.
+/// Solver knobs of the Bullet backend. The defaults suit a static rest state.
 struct BulletSettings {
-    /// First backward Euler step, s; 0 = automatic (a free fall of a tenth of the shortest bar).
+    /// First backward Euler step of each continuation stage, s; 0 = automatic (a free fall of a
+    /// tenth of the shortest bar: at the initial geometry nothing else resists sideways motion).
     double initialTimeStep = 0;
-    /// Longest step, s; 0 = automatic (100 times the longest pendulum period of the net, where a
-    /// step is in effect a Newton step on F = 0).
+    /// Longest step, s; 0 = automatic (100 times the net's longest pendulum period, where a step
+    /// is in effect a Newton step on F = 0).
     double maxTimeStep = 0;
     /// Switched evolution relaxation: the step grows as the residual falls and shrinks when it
-    /// rises. false = every step is initialTimeStep.
+    /// rises. false = every step is initialTimeStep (or the automatic first step).
     bool adaptiveTimeStep = true;
-    /// Kinetic damping: all nodes are stopped after every step, so each step solves
-    /// (M / dt^2 + K) dx = F (pseudo-transient continuation) instead of carrying momentum.
+    /// Kinetic damping: all nodes are stopped after every step. false = Bullet's dynamics carry
+    /// momentum from step to step (slower to settle; for experiments).
     bool kineticDamping = true;
-    /// Newton iterations per Bullet step (Bullet's default is 1), >= 1.
+    /// Newton iterations per Bullet step, >= 1 (Bullet's default: 1).
     int newtonIterations = 1;
-    /// Conjugate-gradient iterations per Newton iteration, >= 1 (Bullet's default is 300).
+    /// Conjugate-gradient iterations per Newton iteration, >= 1 (Bullet's default: 300). Stiff
+    /// nets may need more (each iteration is a pass over all links).
     int conjugateGradientIterations = 300;
-    /// Damping of each link along its direction, N s/m (Bullet's mass-spring damping), >= 0.
+    /// Damping along each link, N s/m (Bullet's mass-spring damping), >= 0; 0 = none.
     double linkDamping = 0;
 };
 
 /// Relaxes a MassSpringSystem with Bullet's deformable solver (see the file comment for how its
 /// model differs from Eq. 3). name() and RelaxResult::backend are "bullet".
 ///
-/// relax() honours RelaxOptions::tolerance (measured every checkInterval steps with the
-/// project's own force function, at the material's stiffness), maxSeconds, maxSteps (Bullet
-/// steps), cancel and progress. It ignores threads (Bullet's solver is serial), continuation
-/// (a Newton step needs none) and wind (Bullet's mass-spring world has no matching load; a
-/// wind option is refused with UserError rather than silently dropped).
+/// relax() checks the residual after every Bullet step (one pass of Eq. 3 by the project's
+/// force code, and one of Bullet's own model when the two differ; a Bullet step costs up to
+/// conjugateGradientIterations such passes). It honours RelaxOptions::tolerance (at the
+/// material's stiffness), maxSeconds and cancel (checked between steps, so one step may run
+/// over), maxSteps (Bullet steps), progress, continuation and continuationFactor. The first stage
+/// is always the softest the RK4 backend allows (EA = 20 times the mean load per held knot), not
+/// previewStiffnessScale: Newton steps need small strains more than a close start. threads is
+/// ignored (Bullet's solver is serial). A wind with pressure > 0 is refused with UserError:
+/// Bullet's world has no matching load.
 ///
-/// stopReason is one of "converged", "time limit", "step limit", "cancelled", "diverged"
-/// (a non-finite state; the last finite one is returned) or "stalled": Bullet's own model is at
-/// rest (its residual, Eq. 3 with k_c = k_s, is below the tolerance) but the project's is not,
-/// because bars are compressed and compression_ratio < 1; going on cannot help.
-/// RelaxResult::residual is residual(system) at the returned positions; converged means it is
-/// below the tolerance. forceEvaluations counts passes of Eq. 3 made by the checks.
+/// The positions returned are, in the last stage, those with the lowest residual of Bullet's own
+/// model (its rest shape); before it (a stop during continuation) the last state, a preview.
+/// Fixed knots are never moved. stopReason is "converged" (residual of Eq. 3 below the
+/// tolerance), "stalled" (Bullet's model is at rest, Eq. 3 is not: compressed bars with
+/// compression_ratio < 1; going on cannot help), "time limit", "step limit", "cancelled" or
+/// "diverged" (the step collapsed; the last finite state is returned). RelaxResult::residual is
+/// residual(system) at the returned positions; forceEvaluations counts the passes of Eq. 3 made
+/// by the checks.
 class BulletRelaxer final : public Relaxer {
   public:
+    /// Throws UserError naming the first invalid setting.
     explicit BulletRelaxer(const BulletSettings& settings = {});
     std::string_view name() const override { return "bullet"; }
     [[nodiscard]] RelaxResult relax(MassSpringSystem& system, const RelaxOptions& options) override;
