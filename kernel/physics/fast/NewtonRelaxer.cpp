@@ -22,10 +22,10 @@ namespace {
 // stage when that would not soften the material by at least kMaxSoftScale.
 constexpr double kSoftLoadFactor = 20;
 constexpr double kMaxSoftScale = 0.1;
-// Then stages kStageFactor times stiffer each (the last intermediate one at least
-// sqrt(kStageFactor) below the material's): a tension-dominated net needs none (the jump from the
-// soft stage to the material costs three or four iterations), a slack one needs them because the
-// shape of its slack parts changes with the stiffness. Each soft stage only has to bring the shape
+// Then, for a slack net only, stages kStageFactor times stiffer each (the last intermediate one
+// at least sqrt(kStageFactor) below the material's): a tension-dominated net needs none (the jump
+// from the soft stage to the material costs four or five mixed iterations), a slack one needs
+// them because the shape of its slack parts changes with the stiffness. Each soft stage only has to bring the shape
 // near the next one: it stops at kSoftTolerance.
 constexpr double kStageFactor = 100;
 constexpr double kSoftTolerance = 1e-1;
@@ -534,6 +534,8 @@ RelaxResult NewtonRun::run() {
             slack = anyCompressed();
         const double blend = stageIndex > 0 && slack ? stage.blend : 0.0;
         if (stage.blend > 0 && stage.scale == 1.0 && blend == 0)
+            continue;
+        if (stageIndex > 0 && stage.scale < 1.0 && !slack) // a taut net goes to the material
             continue;
         if (stageIndex > 0 || stage.scale != 1.0) {
             // Tensions of the previous stage's equilibrium (or of the warm start) seed the
