@@ -1,5 +1,5 @@
 #pragma once
-// The sculptures of the Bullet cross-check (tests and tools/bench/bullet_compare.cpp), built with
+// The sculptures of the Bullet cross-check (tests/physics_bullet), built with
 // the model's edits: a tube on a circular rail (paper, Fig. 10), a sheet between two parallel
 // rails, a tube connected to a second ring (Fig. 11) and a gear-changing stack. `size` scales the
 // knot count (about 100 * size^2 knots); one material for every piece unless `barSpread` makes

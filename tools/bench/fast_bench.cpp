@@ -16,8 +16,8 @@
 //   --scene NAME   only that net          --threads N   thread count (default automatic)
 //   --rk4-cap S    RK4 time cap, s         --no-rk4      skip the RK4 runs
 
-#include "model/Compiler.h"
-#include "model/Edits.h"
+#include "BenchScenes.h"
+
 #include "physics/Forces.h"
 #include "physics/Relaxer.h"
 #include "physics/ThreadPool.h"
@@ -29,19 +29,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <numbers>
 #include <string>
 #include <thread>
 #include <vector>
 
 using namespace netsculpt;
+using bench::secondsSince;
 
 namespace {
-
-constexpr double kBar = 0.1;      // m
-constexpr double kSpacing = 0.1;  // m between the rail's knots
-
-Material rope() { return Material{2e5, 0.01, 0.002, 0.006}; }
 
 struct Scene {
     std::string name;
@@ -50,50 +45,11 @@ struct Scene {
     double targetSeconds;
 };
 
-/// The net through the model's edits; its compiled system starts at the Eq. 2 geometry.
+/// The net through the model's edits (BenchScenes.h); it starts at the Eq. 2 geometry.
 MassSpringSystem build(const Scene& scene) {
-    Sculpture s;
-    PieceId piece;
-    if (!scene.slack) {
-        CurveSpec circle;
-        circle.closed = true;
-        const double radius = scene.columns * kSpacing / (2 * std::numbers::pi);
-        for (int i = 0; i < scene.columns; ++i) {
-            const double a = 2 * std::numbers::pi * i / scene.columns;
-            circle.points.push_back({radius * std::cos(a), radius * std::sin(a), 0});
-        }
-        const RailId top = addRail(s, "top", circle);
-        AttachToRailArgs args;
-        args.rail = top;
-        args.columns = scene.columns;
-        args.rows = scene.rows;
-        args.bar = kBar;
-        piece = attachToRail(s, args);
-    } else {
-        // The second rail is parallel to the first, 0.3 H aside and 0.5 H below, H the sheet's
-        // height: 0.58 H away, so the sheet hangs slack between them.
-        const double width = (scene.columns - 1) * kSpacing;
-        const double height = (scene.rows - 1) * std::sqrt(kBar * kBar - kSpacing * kSpacing / 4);
-        CurveSpec first, second;
-        first.points = {{0, 0, 0}, {width, 0, 0}};
-        second.points = {{0, 0.3 * height, -0.5 * height}, {width, 0.3 * height, -0.5 * height}};
-        const RailId top = addRail(s, "top", first);
-        const RailId bottom = addRail(s, "bottom", second);
-        AttachToRailArgs args;
-        args.rail = top;
-        args.columns = scene.columns;
-        args.rows = scene.rows;
-        args.bar = kBar;
-        piece = attachToRail(s, args);
-        connectToRail(s, piece, bottom, 0.0, false);
-    }
-    setMaterial(s, piece, rope());
-    refreshAndValidate(s);
-    return compileSculpture(s).system;
-}
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return scene.slack
+               ? bench::sheetBetweenParallelRails(scene.rows, scene.columns, bench::realisticRope())
+               : bench::tubeOnCircularRail(scene.rows, scene.columns, bench::realisticRope());
 }
 
 std::size_t compressedBars(const MassSpringSystem& system) {

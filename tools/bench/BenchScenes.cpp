@@ -1,0 +1,71 @@
+#include "BenchScenes.h"
+
+#include "model/Compiler.h"
+#include "model/Edits.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace netsculpt::bench {
+
+namespace {
+
+/// A closed rail of `columns` vertices kSpacing apart, so that the top knots sit at its vertices.
+CurveSpec circularRail(int columns) {
+    CurveSpec circle;
+    circle.closed = true;
+    const double radius = columns * kSpacing / (2 * std::numbers::pi);
+    for (int i = 0; i < columns; ++i) {
+        const double angle = 2 * std::numbers::pi * i / columns;
+        circle.points.push_back({radius * std::cos(angle), radius * std::sin(angle), 0});
+    }
+    return circle;
+}
+
+PieceId attachNet(Sculpture& s, RailId rail, int rows, int columns) {
+    AttachToRailArgs args;
+    args.rail = rail;
+    args.columns = columns;
+    args.rows = rows;
+    args.bar = kBar;
+    return attachToRail(s, args);
+}
+
+MassSpringSystem compiledWith(Sculpture& s, PieceId piece, const Material& material) {
+    setMaterial(s, piece, material);
+    refreshAndValidate(s);
+    return compileSculpture(s).system;
+}
+
+} // namespace
+
+Material realisticRope() {
+    return Material{2e5, 0.01, 0.002, 0.006};
+}
+
+MassSpringSystem tubeOnCircularRail(int rows, int columns, const Material& material) {
+    Sculpture s;
+    const RailId top = addRail(s, "top", circularRail(columns));
+    const PieceId tube = attachNet(s, top, rows, columns);
+    return compiledWith(s, tube, material);
+}
+
+MassSpringSystem sheetBetweenParallelRails(int rows, int columns, const Material& material) {
+    const double width = (columns - 1) * kSpacing;
+    const double height = (rows - 1) * std::sqrt(kBar * kBar - kSpacing * kSpacing / 4);
+    CurveSpec upper, lower;
+    upper.points = {{0, 0, 0}, {width, 0, 0}};
+    lower.points = {{0, 0.3 * height, -0.5 * height}, {width, 0.3 * height, -0.5 * height}};
+    Sculpture s;
+    const RailId top = addRail(s, "top", upper);
+    const RailId bottom = addRail(s, "bottom", lower);
+    const PieceId sheet = attachNet(s, top, rows, columns);
+    connectToRail(s, sheet, bottom, 0.0, false);
+    return compiledWith(s, sheet, material);
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+} // namespace netsculpt::bench
