@@ -3,10 +3,15 @@
 #include "model/Error.h"
 #include "physics/ThreadPool.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <limits>
 #include <string>
+
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
 
 namespace netsculpt {
 
@@ -38,6 +43,111 @@ void checkSizes(const MassSpringSystem& system) {
         badSystem("too many knots or bars (" + std::to_string(knots) + ", " + std::to_string(bars) +
                   ")");
 }
+
+/// |d|^2 as the rest of the kernel computes it (Vec3::norm() as g++ contracts it where FMA is
+/// available): the same bits here, in the SIMD lanes below and in a caller's own distance().
+inline double squaredLength(const Vec3& d) {
+#if defined(__FMA__)
+    return std::fma(d.z, d.z, std::fma(d.x, d.x, d.y * d.y));
+#else
+    return d.x * d.x + d.y * d.y + d.z * d.z;
+#endif
+}
+
+/// The spring force of a bar on its end a (Eq. 3): c d, d = p_b - p_a, c = t / |d| with the
+/// tension t = s k (|d| - l_eq) (k = kTension if stretched, else kCompression), and c = 0 for a
+/// bar of zero length. The SIMD code below performs exactly these IEEE operations in this order.
+struct SpringForce {
+    Vec3 force;
+    double tension; ///< N
+};
+inline SpringForce springForce(const Vec3& pa, const Vec3& pb, double restLength, double kTension,
+                               double kCompression, double scale) {
+    const Vec3 d{pb.x - pa.x, pb.y - pa.y, pb.z - pa.z};
+    const double length = std::sqrt(squaredLength(d));
+    const double extension = length - restLength;
+    const double t = (extension > 0 ? kTension : kCompression) * scale * extension;
+    const double c = length > 0 ? t / length : 0.0;
+    return {Vec3{d.x * c, d.y * c, d.z * c}, t};
+}
+
+inline void addTo(Vec3& total, const Vec3& f) {
+    total.x += f.x;
+    total.y += f.y;
+    total.z += f.z;
+}
+inline void subtractFrom(Vec3& total, const Vec3& f) {
+    total.x -= f.x;
+    total.y -= f.y;
+    total.z -= f.z;
+}
+
+#if defined(__AVX2__)
+/// springForce() of four bars at once, as (x, y) and z of each bar's force on its end a.
+struct SpringForces4 {
+    __m128d xy[4];
+    __m128d z[4];
+    __m256d tension;
+};
+/// (x, y, z, next x) of a position, or (x, y, z, 0) if Masked (for the array's last one).
+template <bool Masked> inline __m256d loadVec3(const Vec3* p) {
+    if constexpr (Masked)
+        return _mm256_maskload_pd(&p->x, _mm256_set_epi64x(0, -1, -1, -1));
+    else
+        return _mm256_loadu_pd(&p->x);
+}
+/// Masked: some bar may end at the last knot (a plain 32-byte load would read past the array).
+template <bool Masked>
+inline SpringForces4 springForces4(const Vec3* positions, const std::uint32_t* ends,
+                                   const double* restLength, const double* kTension,
+                                   const double* kCompression, __m256d scale) {
+    __m256d d[4]; // (x, y, z, _) of p_b - p_a; the fourth lane is never used
+    for (int i = 0; i < 4; ++i)
+        d[i] = _mm256_sub_pd(loadVec3<Masked>(positions + ends[2 * i + 1]),
+                             loadVec3<Masked>(positions + ends[2 * i]));
+    // Transpose to x, y, z of the four bars.
+    const __m256d t0 = _mm256_unpacklo_pd(d[0], d[1]), t1 = _mm256_unpackhi_pd(d[0], d[1]);
+    const __m256d t2 = _mm256_unpacklo_pd(d[2], d[3]), t3 = _mm256_unpackhi_pd(d[2], d[3]);
+    const __m256d x = _mm256_permute2f128_pd(t0, t2, 0x20),
+                  z = _mm256_permute2f128_pd(t0, t2, 0x31);
+    const __m256d y = _mm256_permute2f128_pd(t1, t3, 0x20);
+    const __m256d zero = _mm256_setzero_pd();
+#if defined(__FMA__)
+    const __m256d squared = _mm256_fmadd_pd(z, z, _mm256_fmadd_pd(x, x, _mm256_mul_pd(y, y)));
+#else
+    const __m256d squared =
+        _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(x, x), _mm256_mul_pd(y, y)), _mm256_mul_pd(z, z));
+#endif
+    const __m256d length = _mm256_sqrt_pd(squared);
+    const __m256d extension = _mm256_sub_pd(length, _mm256_loadu_pd(restLength));
+    const __m256d k = _mm256_blendv_pd(_mm256_loadu_pd(kCompression), _mm256_loadu_pd(kTension),
+                                       _mm256_cmp_pd(extension, zero, _CMP_GT_OQ));
+    SpringForces4 out;
+    out.tension = _mm256_mul_pd(_mm256_mul_pd(k, scale), extension);
+    const __m256d c =
+        _mm256_and_pd(_mm256_div_pd(out.tension, length), _mm256_cmp_pd(length, zero, _CMP_GT_OQ));
+    const __m256d fx = _mm256_mul_pd(x, c), fy = _mm256_mul_pd(y, c), fz = _mm256_mul_pd(z, c);
+    const __m256d xy02 = _mm256_unpacklo_pd(fx, fy), xy13 = _mm256_unpackhi_pd(fx, fy);
+    out.xy[0] = _mm256_castpd256_pd128(xy02);
+    out.xy[1] = _mm256_castpd256_pd128(xy13);
+    out.xy[2] = _mm256_extractf128_pd(xy02, 1);
+    out.xy[3] = _mm256_extractf128_pd(xy13, 1);
+    const __m128d z01 = _mm256_castpd256_pd128(fz), z23 = _mm256_extractf128_pd(fz, 1);
+    out.z[0] = z01;
+    out.z[1] = _mm_unpackhi_pd(z01, z01);
+    out.z[2] = z23;
+    out.z[3] = _mm_unpackhi_pd(z23, z23);
+    return out;
+}
+inline void addTo(Vec3& total, __m128d xy, __m128d z) {
+    _mm_storeu_pd(&total.x, _mm_add_pd(_mm_loadu_pd(&total.x), xy));
+    _mm_store_sd(&total.z, _mm_add_sd(_mm_load_sd(&total.z), z));
+}
+inline void subtractFrom(Vec3& total, __m128d xy, __m128d z) {
+    _mm_storeu_pd(&total.x, _mm_sub_pd(_mm_loadu_pd(&total.x), xy));
+    _mm_store_sd(&total.z, _mm_sub_sd(_mm_load_sd(&total.z), z));
+}
+#endif
 
 } // namespace
 
@@ -71,7 +181,10 @@ ForceField::ForceField(const MassSpringSystem& system) {
         inverseWeight_[j] = 1.0 / (system.mass[j] * g);
     }
 
-    bars_.resize(bars);
+    ends_.resize(2 * bars);
+    restLength_ = system.restLength;
+    kTension_ = system.kTension;
+    kCompression_ = system.kCompression;
     std::vector<std::uint32_t> degree(knots, 0);
     for (std::size_t b = 0; b < bars; ++b) {
         const std::uint32_t a = system.barA[b], e = system.barB[b];
@@ -88,7 +201,8 @@ ForceField::ForceField(const MassSpringSystem& system) {
         if (!std::isfinite(system.kCompression[b]) || system.kCompression[b] < 0)
             badSystem("bar " + std::to_string(b) + " has kCompression " +
                       formatNumber(system.kCompression[b]) + " N/m; must be finite and >= 0");
-        bars_[b] = Bar{a, e, system.restLength[b], system.kTension[b], system.kCompression[b]};
+        ends_[2 * b] = a;
+        ends_[2 * b + 1] = e;
         ++degree[a];
         ++degree[e];
     }
@@ -105,12 +219,34 @@ ForceField::ForceField(const MassSpringSystem& system) {
     std::vector<std::uint32_t> next(adjacencyStart_.begin(), adjacencyStart_.end() - 1);
     for (std::size_t b = 0; b < bars; ++b) {
         const auto bar = static_cast<std::uint32_t>(b);
-        adjacency_[next[bars_[b].a]] = 2 * bar;
-        adjacentBars_[next[bars_[b].a]++] = bar;
-        adjacency_[next[bars_[b].b]] = 2 * bar + 1;
-        adjacentBars_[next[bars_[b].b]++] = bar;
+        adjacency_[next[ends_[2 * b]]] = 2 * bar;
+        adjacentBars_[next[ends_[2 * b]]++] = bar;
+        adjacency_[next[ends_[2 * b + 1]]] = 2 * bar + 1;
+        adjacentBars_[next[ends_[2 * b + 1]]++] = bar;
     }
     barForce_.resize(bars);
+
+    // Bounds of the streaming pass. A knot's bars lie between its first and its last bar (the
+    // first and last entries of its row of the table); a knot without bars has none to walk.
+    const auto noBar = static_cast<std::uint32_t>(bars);
+    firstBarFrom_.assign(knots + 1, noBar);
+    for (std::size_t j = knots; j-- > 0;) {
+        const std::uint32_t first = degree[j] > 0 ? adjacentBars_[adjacencyStart_[j]] : noBar;
+        firstBarFrom_[j] = std::min(firstBarFrom_[j + 1], first);
+    }
+    lastBarTo_.assign(knots, 0);
+    for (std::size_t j = 0; j < knots; ++j) {
+        const std::uint32_t last =
+            degree[j] > 0 ? adjacentBars_[adjacencyStart_[j + 1] - 1] + 1 : 0;
+        lastBarTo_[j] = std::max(j > 0 ? lastBarTo_[j - 1] : 0u, last);
+    }
+    unmaskedEnd_ = knots > 0 ? firstBarFrom_[knots - 1] : bars; // bars before: not at the last knot
+    knotsBelow_.resize(bars);
+    std::uint32_t largest = 0;
+    for (std::size_t b = 0; b < bars; ++b) {
+        largest = std::max({largest, ends_[2 * b] + 1, ends_[2 * b + 1] + 1});
+        knotsBelow_[b] = largest;
+    }
 }
 
 void ForceField::setLoad(const std::optional<Wind>& wind, double stiffnessScale) {
@@ -134,42 +270,155 @@ std::span<const std::uint32_t> ForceField::barsOfKnot(std::size_t j) const {
 
 void ForceField::computeBars(const Vec3* positions, std::size_t begin, std::size_t end,
                              double* tension) {
-    const double scale = scale_;
-    for (std::size_t b = begin; b < end; ++b) {
-        const Bar& bar = bars_[b];
-        const Vec3 d = positions[bar.b] - positions[bar.a];
-        const double length = d.norm();
-        const double extension = length - bar.restLength;
-        const double k = (extension > 0 ? bar.kTension : bar.kCompression) * scale;
-        const double t = k * extension; // N, < 0 in compression (Eq. 3)
+    std::size_t b = begin;
+#if defined(__AVX2__)
+    const __m256d scale = _mm256_set1_pd(scale_);
+    for (; b + 4 <= end; b += 4) {
+        const SpringForces4 f =
+            b + 4 <= unmaskedEnd_ ? springForces4<false>(positions, &ends_[2 * b], &restLength_[b],
+                                                         &kTension_[b], &kCompression_[b], scale)
+                                  : springForces4<true>(positions, &ends_[2 * b], &restLength_[b],
+                                                        &kTension_[b], &kCompression_[b], scale);
+        for (int i = 0; i < 4; ++i) {
+            _mm_storeu_pd(&barForce_[b + i].x, f.xy[i]);
+            _mm_store_sd(&barForce_[b + i].z, f.z[i]);
+        }
         if (tension)
-            tension[b] = t;
-        // Force on end a: t along the unit vector from a to b (Eq. 3); end b gets the opposite.
-        barForce_[b] = length > 0 ? d * (t / length) : Vec3{};
-        if (hasWind_) {
+            _mm256_storeu_pd(tension + b, f.tension);
+    }
+#endif
+    for (; b < end; ++b) {
+        const SpringForce f = springForce(positions[ends_[2 * b]], positions[ends_[2 * b + 1]],
+                                          restLength_[b], kTension_[b], kCompression_[b], scale_);
+        barForce_[b] = f.force;
+        if (tension)
+            tension[b] = f.tension;
+    }
+    if (hasWind_)
+        for (b = begin; b < end; ++b) {
             // q L times the part of the wind direction normal to the bar, half to each end.
+            const Vec3 d = positions[ends_[2 * b + 1]] - positions[ends_[2 * b]];
+            const double length = std::sqrt(squaredLength(d));
             const Vec3 normal = windDirection_ - d * (windDirection_.dot(d) / (length * length));
             barWind_[b] = length > 0 ? normal * (0.5 * windPressure_ * length) : Vec3{};
         }
+}
+
+std::pair<std::size_t, std::size_t> ForceField::streamBarRange(std::size_t begin,
+                                                               std::size_t end) const {
+    const std::size_t first = firstBarFrom_[begin], last = lastBarTo_[end - 1];
+    return {first, std::max(first, last)};
+}
+
+template <bool Checked>
+void ForceField::streamBars(const Vec3* positions, Vec3* force, std::size_t begin, std::size_t end,
+                            std::size_t firstKnot, std::size_t endKnot,
+                            std::size_t* nextKnot) const {
+    // Local copies: the compiler cannot know that the stores to force leave these alone.
+    const Vec3* const weight = weight_.data();
+    const std::uint32_t* const ends = ends_.data();
+    const std::uint32_t* const knotsBelow = knotsBelow_.data();
+    const double* const restLength = restLength_.data();
+    const double* const kTension = kTension_.data();
+    const double* const kCompression = kCompression_.data();
+    std::size_t j = *nextKnot;
+    // Every knot that bars up to b can reach gets its weight before their forces are added.
+    auto startKnots = [&](std::size_t b) {
+        for (const std::size_t below = std::min<std::size_t>(knotsBelow[b], endKnot); j < below;
+             ++j)
+            force[j] = weight[j];
+    };
+    auto mine = [&](std::uint32_t k) { return !Checked || (k >= firstKnot && k < endKnot); };
+    std::size_t b = begin;
+#if defined(__AVX2__)
+    // Four bars at a time, added to their knots right away: the additions of one group then
+    // overlap the square roots and divisions of the next (computing many groups ahead is slower).
+    const __m256d scale = _mm256_set1_pd(scale_);
+    for (; b + 4 <= end; b += 4) {
+        const SpringForces4 f = b + 4 <= unmaskedEnd_
+                                    ? springForces4<false>(positions, ends + 2 * b, restLength + b,
+                                                           kTension + b, kCompression + b, scale)
+                                    : springForces4<true>(positions, ends + 2 * b, restLength + b,
+                                                          kTension + b, kCompression + b, scale);
+        startKnots(b + 3);
+        for (std::size_t i = 0; i < 4; ++i) {
+            const std::uint32_t ka = ends[2 * (b + i)], kb = ends[2 * (b + i) + 1];
+            if (mine(ka))
+                addTo(force[ka], f.xy[i], f.z[i]);
+            if (mine(kb))
+                subtractFrom(force[kb], f.xy[i], f.z[i]);
+        }
     }
+#endif
+    for (; b < end; ++b) {
+        startKnots(b);
+        const std::uint32_t ka = ends[2 * b], kb = ends[2 * b + 1];
+        const Vec3 f = springForce(positions[ka], positions[kb], restLength[b], kTension[b],
+                                   kCompression[b], scale_)
+                           .force;
+        if (mine(ka))
+            addTo(force[ka], f);
+        if (mine(kb))
+            subtractFrom(force[kb], f);
+    }
+    *nextKnot = j;
+}
+
+void ForceField::streamKnots(const Vec3* positions, Vec3* force, std::size_t begin,
+                             std::size_t end) const {
+    const auto [first, last] = streamBarRange(begin, end);
+    // Bars from `inner` on touch no knot before `begin`; bars before `outer` none from `end` on.
+    const std::size_t inner =
+        std::clamp<std::size_t>(begin > 0 ? lastBarTo_[begin - 1] : 0, first, last);
+    const std::size_t outer = std::clamp<std::size_t>(firstBarFrom_[end], inner, last);
+    std::size_t next = begin;
+    streamBars<true>(positions, force, first, inner, begin, end, &next);
+    streamBars<false>(positions, force, inner, outer, begin, end, &next);
+    streamBars<true>(positions, force, outer, last, begin, end, &next);
+    for (; next < end; ++next) // knots after the last bar's ends, and knots without bars
+        force[next] = weight_[next];
 }
 
 void ForceField::evaluate(std::span<const Vec3> positions, std::span<Vec3> force,
                           ThreadPool* pool) {
     assert(positions.size() == knotCount() && force.size() == knotCount());
+    const std::size_t knots = knotCount();
+    bool stream = !hasWind_;
+    if (stream && pool) {
+        // A thread walks the bars from the first to the last of its knots. Where knots far apart
+        // in number share bars (pieces joined, numbered apart), the threads' walks overlap; past
+        // a quarter more bars than there are, the two-phase way (each bar once) is faster.
+        const std::size_t chunks = pool->chunkCount(knots);
+        std::size_t walked = 0;
+        for (std::size_t c = 0; c < chunks; ++c) {
+            const auto [first, last] = streamBarRange(knots * c / chunks, knots * (c + 1) / chunks);
+            walked += last - first;
+        }
+        stream = walked <= barCount() + barCount() / 4;
+    }
+    if (stream) {
+        auto knotRange = [&](std::size_t begin, std::size_t end, std::size_t) {
+            streamKnots(positions.data(), force.data(), begin, end);
+        };
+        if (pool)
+            pool->parallelFor(knots, knotRange);
+        else if (knots > 0)
+            knotRange(0, knots, 0);
+        return;
+    }
     auto bars = [&](std::size_t begin, std::size_t end, std::size_t) {
         computeBars(positions.data(), begin, end);
     };
-    auto knots = [&](std::size_t begin, std::size_t end, std::size_t) {
+    auto knotForces = [&](std::size_t begin, std::size_t end, std::size_t) {
         for (std::size_t j = begin; j < end; ++j)
             force[j] = knotForce(j);
     };
     if (pool) {
         pool->parallelFor(barCount(), bars);
-        pool->parallelFor(knotCount(), knots);
+        pool->parallelFor(knots, knotForces);
     } else {
         bars(0, barCount(), 0);
-        knots(0, knotCount(), 0);
+        knotForces(0, knots, 0);
     }
 }
 

@@ -8,11 +8,22 @@
 // stiffness scale (1 = the material; continuation uses s < 1). A bar of zero current length
 // has no direction and exerts no force.
 //
-// An evaluation has two passes over flat arrays: each bar's spring force (and wind load) is
-// computed once into a per-bar array (phase 1), then each knot sums its bars (phase 2) in a
-// fixed order, from a knot -> bar table built once. Each pass can be shared out among threads;
-// nothing depends on how, so the result is bit-identical whatever the number of threads. The
-// two ends of a bar get exactly opposite spring forces (negation is exact).
+// What is computed, bit for bit, whichever way: each bar's spring force (the same IEEE operations
+// in a SIMD lane as in scalar code: Forces.cpp is compiled without floating-point contraction
+// and spells out the two FMAs of |d|^2), and F_j = m_j g plus the forces of the bars of knot j
+// added in increasing bar order (end a: +f, end b: -f, so the two ends get exactly opposite
+// forces). Two ways compute it:
+//  - the two-phase way (computeBars, then knotForce per knot): per-bar forces in an array, then a
+//    gather per knot through the knot -> bar table. With wind, evaluate() takes this way;
+//  - evaluate() without wind: one streaming pass over the bars in index order that adds each
+//    bar's force straight into its ends' totals, a knot's total starting at m_j g just before
+//    its first bar; no per-bar array. A thread takes a range of knots and walks the bars from
+//    its knots' first to their last (bars at the edge of its range are computed by both
+//    neighbours; each keeps only its own ends).
+// Either way the result does not depend on the number of threads. The streaming pass suits the
+// compiler's numbering (knots row by row, bars by their knot in the lower row: a knot's bars
+// are a row apart at most); with threads it falls back to the two-phase way when their walks
+// would overlap much (pieces joined across far-apart knot numbers).
 
 #include "geometry/Vec3.h"
 #include "physics/MassSpringSystem.h"
@@ -21,6 +32,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace netsculpt {
@@ -38,7 +50,7 @@ class ForceField {
     explicit ForceField(const MassSpringSystem& system);
 
     std::size_t knotCount() const { return fixed_.size(); }
-    std::size_t barCount() const { return bars_.size(); }
+    std::size_t barCount() const { return restLength_.size(); }
 
     /// Sets the load evaluations use from now on: wind (empty = none; validated, UserError) and
     /// the stiffness scale s (> 0; 1 = the material).
@@ -70,31 +82,37 @@ class ForceField {
         return force.norm() * inverseWeight_[j];
     }
 
-    /// Both phases for all knots: force[j] = F_j in N (fixed knots too). With a pool the two
-    /// phases are split over its threads; the result is the same bit for bit.
+    /// F_j for all knots: force[j] in N (fixed knots too). With a pool the work is split over its
+    /// threads; the result is the same bit for bit (and the same as the two phases above).
     void evaluate(std::span<const Vec3> positions, std::span<Vec3> force,
                   ThreadPool* pool = nullptr);
 
     bool isFixed(std::size_t j) const { return fixed_[j] != 0; }
     /// The knots at the ends of bar b.
-    std::uint32_t barEndA(std::size_t b) const { return bars_[b].a; }
-    std::uint32_t barEndB(std::size_t b) const { return bars_[b].b; }
+    std::uint32_t barEndA(std::size_t b) const { return ends_[2 * b]; }
+    std::uint32_t barEndB(std::size_t b) const { return ends_[2 * b + 1]; }
     /// kTension of bar b in N/m at scale 1.
-    double barTensionStiffness(std::size_t b) const { return bars_[b].kTension; }
+    double barTensionStiffness(std::size_t b) const { return kTension_[b]; }
     /// The bars of knot j (indices into the bars), in the fixed order of the sum.
     std::span<const std::uint32_t> barsOfKnot(std::size_t j) const;
 
   private:
-    /// Hot per-bar data, 32 bytes.
-    struct Bar {
-        std::uint32_t a, b;  ///< end knots
-        double restLength;   ///< m
-        double kTension;     ///< N/m at scale 1
-        double kCompression; ///< N/m at scale 1
-    };
-    static_assert(sizeof(Bar) == 32);
+    /// The streaming pass of evaluate() for knots [begin, end) (see the top of this file).
+    void streamKnots(const Vec3* positions, Vec3* force, std::size_t begin, std::size_t end) const;
+    /// Bars [begin, end) of the streaming pass: adds their forces to those of their ends in
+    /// [firstKnot, endKnot) (Checked) or to both ends (!Checked: the caller knows both are in),
+    /// setting force[j] = m_j g first for knots j < endKnot from *nextKnot on as bars reach them.
+    template <bool Checked>
+    void streamBars(const Vec3* positions, Vec3* force, std::size_t begin, std::size_t end,
+                    std::size_t firstKnot, std::size_t endKnot, std::size_t* nextKnot) const;
+    /// The bars the streaming pass walks for knots [begin, end): [first, last).
+    std::pair<std::size_t, std::size_t> streamBarRange(std::size_t begin, std::size_t end) const;
 
-    std::vector<Bar> bars_;
+    // Hot per-bar data, struct of arrays for SIMD: 32 bytes per bar.
+    std::vector<std::uint32_t> ends_;   ///< knots at the ends of bar b: a at 2 b, b at 2 b + 1
+    std::vector<double> restLength_;    ///< m
+    std::vector<double> kTension_;      ///< N/m at scale 1
+    std::vector<double> kCompression_;  ///< N/m at scale 1
     std::vector<Vec3> weight_;          ///< m_j g, N
     std::vector<double> inverseWeight_; ///< 1 / (m_j |g|), 1/N
     std::vector<std::uint8_t> fixed_;
@@ -103,6 +121,11 @@ class ForceField {
     std::vector<std::uint32_t> adjacentBars_;   ///< b, same order (for barsOfKnot)
     std::vector<Vec3> barForce_; ///< spring force of bar b on its end a (end b: the opposite), N
     std::vector<Vec3> barWind_;  ///< wind load of bar b on each of its ends, N (if wind)
+    // The streaming pass's bounds (knot j's bars lie between its first and its last bar).
+    std::vector<std::uint32_t> firstBarFrom_; ///< knotCount()+1: min first bar of knots >= j
+    std::vector<std::uint32_t> lastBarTo_;    ///< knotCount(): 1 + max last bar of knots <= j
+    std::vector<std::uint32_t> knotsBelow_;   ///< per bar: 1 + the largest end of bars <= b
+    std::size_t unmaskedEnd_ = 0;             ///< bars before it do not touch the last knot
     double scale_ = 1.0;
     bool hasWind_ = false;
     Vec3 windDirection_;      ///< unit

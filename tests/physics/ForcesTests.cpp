@@ -6,8 +6,11 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <numeric>
+#include <random>
 
 using namespace netsculpt;
 using Catch::Matchers::WithinAbs;
@@ -52,6 +55,37 @@ MassSpringSystem perturbedSheet(int rows, int columns) {
             s.position[j] +=
                 Vec3{0.03 * std::sin(1.7 * j), 0.02 * std::cos(0.3 * j), 0.01 * std::sin(j)};
     return s;
+}
+
+/// The system with its bars in another order (bar b of the result is bar order[b] of s).
+MassSpringSystem withBarOrder(const MassSpringSystem& s, const std::vector<std::size_t>& order) {
+    MassSpringSystem r = s;
+    for (std::size_t b = 0; b < order.size(); ++b) {
+        r.barA[b] = s.barA[order[b]];
+        r.barB[b] = s.barB[order[b]];
+        r.restLength[b] = s.restLength[order[b]];
+        r.kTension[b] = s.kTension[order[b]];
+        r.kCompression[b] = s.kCompression[order[b]];
+        r.linearDensity[b] = s.linearDensity[order[b]];
+        r.barPiece[b] = s.barPiece[order[b]];
+    }
+    return r;
+}
+
+/// F_j the two-phase way: every bar's force (computeBars over ranges of `group` bars, so SIMD
+/// groups and scalar tails fall on other bars than in evaluate()), then knotForce per knot.
+std::vector<Vec3> twoPhaseForces(ForceField& field, const std::vector<Vec3>& positions,
+                                 std::size_t group) {
+    for (std::size_t b = 0; b < field.barCount(); b += group)
+        field.computeBars(positions.data(), b, std::min(field.barCount(), b + group));
+    std::vector<Vec3> force(field.knotCount());
+    for (std::size_t j = 0; j < force.size(); ++j)
+        force[j] = field.knotForce(j);
+    return force;
+}
+
+bool sameBits(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)) == 0;
 }
 
 } // namespace
@@ -140,6 +174,58 @@ TEST_CASE("The force is bit-identical with one or two threads", "[forces][determ
     ThreadPool pool(2);
     field.evaluate(s.position, two, &pool);
     REQUIRE(std::memcmp(one.data(), two.data(), one.size() * sizeof(Vec3)) == 0);
+}
+
+TEST_CASE("Without wind, evaluate's single pass gives the two-phase forces bit for bit on any "
+          "number of threads and any bar order",
+          "[forces][determinism]") {
+    MassSpringSystem sheet = perturbedSheet(30, 40);
+    sheet.position[sheet.barA[100]] = sheet.position[sheet.barB[100]]; // a bar of zero length
+    TubeSpec tubeSpec;
+    tubeSpec.rows = 25;
+    tubeSpec.columns = 33;
+    MassSpringSystem tube = makeTube(tubeSpec);
+    for (std::size_t j = 0; j < tube.knotCount(); ++j)
+        if (!tube.fixed[j])
+            tube.position[j] += Vec3{0.004 * std::sin(0.7 * j), 0.003 * std::cos(1.3 * j), 0};
+    // Bars of the sheet reversed (the pass walks them in index order, knots still local) and
+    // shuffled (no locality at all: threads fall back to the two-phase way).
+    std::vector<std::size_t> order(sheet.barCount());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::reverse(order.begin(), order.end());
+    const MassSpringSystem reversed = withBarOrder(sheet, order);
+    std::shuffle(order.begin(), order.end(), std::mt19937(7));
+    const MassSpringSystem shuffled = withBarOrder(sheet, order);
+    // Knots without bars (fixed, say a loose rail point) at the start, in the middle, at the end.
+    MassSpringSystem loose = sheet;
+    for (std::size_t j : {std::size_t{0}, std::size_t{600}, loose.knotCount()}) {
+        loose.position.insert(loose.position.begin() + static_cast<std::ptrdiff_t>(j),
+                              Vec3{1, 2, 3});
+        loose.mass.insert(loose.mass.begin() + static_cast<std::ptrdiff_t>(j), 0.5);
+        loose.fixed.insert(loose.fixed.begin() + static_cast<std::ptrdiff_t>(j), 1);
+        for (auto* end : {&loose.barA, &loose.barB})
+            for (std::uint32_t& k : *end)
+                k += k >= j ? 1 : 0;
+    }
+
+    for (const MassSpringSystem* s : std::initializer_list<const MassSpringSystem*>{
+             &sheet, &tube, &reversed, &shuffled, &loose}) {
+        ForceField field(*s);
+        for (double scale : {1.0, 0.3}) {
+            field.setLoad(std::nullopt, scale);
+            const std::vector<Vec3> reference = twoPhaseForces(field, s->position, 7);
+            CHECK(sameBits(twoPhaseForces(field, s->position, s->barCount()), reference));
+            std::vector<Vec3> force(s->knotCount());
+            field.evaluate(s->position, force);
+            CHECK(sameBits(force, reference));
+            for (int threads : {2, 3}) {
+                ThreadPool pool(threads);
+                std::fill(force.begin(), force.end(), Vec3{NAN, NAN, NAN});
+                field.evaluate(s->position, force, &pool);
+                CHECK(sameBits(force, reference));
+            }
+        }
+    }
 }
 
 TEST_CASE("A malformed system is a user error naming the culprit", "[forces]") {
