@@ -341,6 +341,17 @@ CompiledSculpture& Document::compiled() { return state_->compiled; }
 const RelaxResult& Document::lastRelax() const { return state_->lastRelax; }
 bool Document::isRelaxed() const { return state_->relaxed; }
 
+void Document::adoptPositions(std::vector<Vec3> positions, bool converged) {
+    State& st = *state_;
+    if (positions.size() != st.compiled.system.knotCount())
+        throw UserError("adopt positions: " + std::to_string(positions.size()) +
+                        " positions given, the sculpture has " +
+                        std::to_string(st.compiled.system.knotCount()) + " knots");
+    st.compiled.system.position = std::move(positions);
+    st.relaxed = converged;
+    st.warm = true;
+}
+
 namespace {
 /// The name a backend reports for a requested backend ("auto" runs the fast path).
 std::string_view relaxerKey(std::string_view requested) { return requested == "auto" ? "fast" : requested; }

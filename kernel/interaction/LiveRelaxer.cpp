@@ -143,30 +143,37 @@ void LiveRelaxer::runJob(Job& job) {
         o.cancel = &cancel_;
         o.threads = options_.threads;
         if (job.phase == LivePhase::Preview) {
-            // The soft copy in short runs, each published: the net visibly settles.
+            // The soft copy in one run whose progress reports, with their positions, are
+            // published: the net visibly settles. RK4's soft copy needs no continuation of its
+            // own (its schedule is a way to such a stiffness); the fast path's continuation is
+            // how it starts from a cold shape, and a warm one skips it.
             const double scale = previewScale(job.system, options_.previewStiffnessScale);
             MassSpringSystem soft = scaledCopy(job.system, scale);
             o.tolerance = options_.previewTolerance;
-            o.continuation = false;
-            o.maxSeconds = options_.publishInterval;
+            o.continuation = relaxer_->name() == "fast";
+            o.maxSeconds = options_.maxSeconds;
+            o.progressInterval = options_.publishInterval;
             state.stiffnessScale = scale;
-            for (;;) {
-                const RelaxResult r = relaxer_->relax(soft, o);
-                state.steps += r.steps;
-                state.residual = r.residual;
-                state.seconds = seconds();
-                if (r.stopReason == "cancelled" || superseded()) {
-                    if (!hasPending()) finish("cancelled", soft.position); // else a newer run follows
+            o.progress = [&](const RelaxProgress& p) {
+                if (p.positions.size() != soft.knotCount())
                     return;
-                }
-                if (r.stopReason == "diverged") return finish("diverged", soft.position);
-                if (r.converged) break;
-                if (state.seconds > options_.maxSeconds) return finish("time limit", soft.position);
-                state.positions = soft.position;
-                publish(state);
+                LiveState shown = state;
+                shown.stiffnessScale = scale * p.stiffnessScale; // the fast path may start softer
+                shown.residual = p.residual;
+                shown.steps = p.steps;
+                shown.seconds = seconds();
+                shown.positions.assign(p.positions.begin(), p.positions.end());
+                publish(std::move(shown));
+            };
+            const RelaxResult r = relaxer_->relax(soft, o);
+            state.steps = r.steps;
+            state.residual = r.residual;
+            if (r.stopReason == "cancelled" || superseded()) {
+                if (!hasPending()) finish("cancelled", soft.position); // else a newer run follows
+                return;
             }
-            state.converged = true;
-            return finish("converged", soft.position);
+            state.converged = r.converged;
+            return finish(r.stopReason, soft.position);
         }
         // Refine: the material's stiffness in one run, so the backend keeps its own continuation
         // (restarting it in pieces can lead a slack net to another equilibrium); its progress

@@ -3,9 +3,11 @@
 // publishes its positions a few dozen times a second; the UI thread never waits for it.
 //
 // preview() relaxes a soft copy of the material (every stiffness scaled by the preview scale, so
-// it settles in a fraction of the time; the shape is close to the final one) in short runs, each
-// published. Each call cancels the run in progress (RelaxOptions::cancel) and starts again from
-// the positions it is given, so every edit restarts from the current shape. refine() relaxes at
+// it settles in a fraction of the time; the shape is close to the final one) in one run whose
+// progress reports carry positions, each published (about every publishInterval). Each call
+// cancels the run in progress (RelaxOptions::cancel) and starts again from the positions it is
+// given, so every edit restarts from the current shape (a warm start: the fast path then needs a
+// few Newton iterations). refine() relaxes at
 // the material's stiffness in one run (the backend's own stiffness continuation) down to the
 // refine tolerance, publishing its residual as it converges and the positions at the end.
 //
@@ -34,7 +36,7 @@ struct LiveRelaxOptions {
     double previewTolerance = 1e-3;   ///< the preview stops below this residual (at its stiffness)
     double refineTolerance = 1e-6;    ///< refine: converged below this residual at full stiffness
     double maxSeconds = 600;          ///< a run gives up after this long, s
-    double publishInterval = 1.0 / 30; ///< s of relaxation between two published preview shapes
+    double publishInterval = 1.0 / 30; ///< s, at least, between two published preview shapes
     std::string backend = "auto";     ///< see makeRelaxer
     int threads = 0;                  ///< RelaxOptions::threads
 };

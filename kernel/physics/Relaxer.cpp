@@ -275,6 +275,7 @@ RelaxResult Rk4Run::run() {
         progress.steps = steps;
         progress.seconds = now;
         progress.stiffnessScale = scale;
+        progress.positions = x_;
         progress.estimatedSecondsLeft = -1;
         if (scale == 1.0 && residualNow > 0 && std::isfinite(residualNow)) {
             const double logResidual = std::log(residualNow);

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -24,6 +25,9 @@ struct RelaxProgress {
     double seconds = 0;               ///< wall time since the start, s
     double estimatedSecondsLeft = -1; ///< s until the tolerance at full stiffness; < 0 = unknown
     double stiffnessScale = 1; ///< the continuation stage's scale s in (0, 1]; 1 = the material
+    /// The knots' positions at this moment (valid during the call only; empty when the backend
+    /// does not expose them). What a live view shows while one run goes on.
+    std::span<const Vec3> positions;
 };
 
 struct RelaxOptions {

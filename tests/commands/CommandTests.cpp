@@ -155,6 +155,32 @@ TEST_CASE("undo restores exactly the shape the document had, relaxed or not") {
     CHECK(doc.isRelaxed());
 }
 
+TEST_CASE("positions relaxed elsewhere are adopted as the warm start of the next edit") {
+    // The studio relaxes in a background thread and hands the shape it shows to the document.
+    Document doc = fixtureDocument();
+    std::vector<Vec3> shown = doc.compiled().system.position;
+    const std::uint32_t k = doc.compiled().knotOf(PieceId(1), 4, 3);
+    shown[k] += Vec3{0.01, -0.02, -0.03};
+    const std::uint64_t hashBefore = doc.hash();
+
+    // a wrong count is refused, naming both counts, and changes nothing
+    std::vector<Vec3> tooFew(shown.begin(), shown.end() - 1);
+    CHECK_THROWS_WITH(doc.adoptPositions(tooFew, false),
+                      Contains(std::to_string(tooFew.size())) &&
+                          Contains(std::to_string(shown.size()) + " knots"));
+    CHECK_FALSE(sameBits(doc.compiled().system.position[k], shown[k]));
+
+    doc.adoptPositions(shown, false);
+    CHECK(doc.hash() == hashBefore); // the model is unchanged
+    CHECK_FALSE(doc.isRelaxed());
+    doc.execute(SetRowsCommand{PieceId(1), 8});
+    const CompiledSculpture& next = doc.compiled();
+    CHECK(sameBits(next.system.position[next.knotOf(PieceId(1), 4, 3)], shown[k]));
+
+    doc.adoptPositions(doc.compiled().system.position, true);
+    CHECK(doc.isRelaxed());
+}
+
 TEST_CASE("merged commands are one undo step and equal doing both") {
     Document merged = fixtureDocument();
     Document separate = fixtureDocument();

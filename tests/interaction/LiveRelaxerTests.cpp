@@ -75,6 +75,8 @@ TEST_CASE("live relaxer: a new edit cancels the run in progress and restarts fro
     while (!live.latest() && secondsSince(start) < 10) std::this_thread::sleep_for(std::chrono::milliseconds(5));
     REQUIRE(live.latest());
     CHECK(live.latest()->running);
+    // the run publishes the shape it has reached while it goes on
+    CHECK(live.latest()->positions.size() == big.knotCount());
 
     scene.doc.execute(SetRowsCommand{scene.net, 6});
     const MassSpringSystem& small = scene.doc.compiled().system;

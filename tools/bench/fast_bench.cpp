@@ -15,6 +15,7 @@
 //   netsculpt-bench-fast --quick         20x40 nets, short RK4 caps (CI smoke)
 //   --scene NAME   only that net          --threads N   thread count (default automatic)
 //   --rk4-cap S    RK4 time cap, s         --no-rk4      skip the RK4 runs
+//   --trace        print the fast path's residual after every Newton iteration
 
 #include "BenchScenes.h"
 
@@ -59,7 +60,7 @@ std::size_t compressedBars(const MassSpringSystem& system) {
     return count;
 }
 
-void runScene(const Scene& scene, int threads, double rk4Cap, bool rk4) {
+void runScene(const Scene& scene, int threads, double rk4Cap, bool rk4, bool trace) {
     const MassSpringSystem start = build(scene);
     std::printf("\n== %s: %zu knots, %zu bars (target %.2g s)\n", scene.name.c_str(),
                 start.knotCount(), start.barCount(), scene.targetSeconds);
@@ -68,6 +69,13 @@ void runScene(const Scene& scene, int threads, double rk4Cap, bool rk4) {
     RelaxOptions options;
     options.threads = threads;
     options.maxSeconds = 120;
+    if (trace) {
+        options.progressInterval = 0;
+        options.progress = [](const RelaxProgress& p) {
+            std::printf("  iteration %lld  %.3f s  scale %.3g  residual %.3g\n",
+                        static_cast<long long>(p.steps), p.seconds, p.stiffnessScale, p.residual);
+        };
+    }
     FastRelaxer fast;
     const RelaxResult result = fast.relax(system, options);
     const NewtonStatistics& stats = fast.statistics();
@@ -188,7 +196,7 @@ void forcePass(bool quick) {
 } // namespace
 
 int main(int argc, char** argv) {
-    bool quick = false, rk4 = true;
+    bool quick = false, rk4 = true, trace = false;
     int threads = 0;
     double rk4Cap = -1;
     std::string only;
@@ -198,6 +206,8 @@ int main(int argc, char** argv) {
             quick = true;
         else if (arg == "--no-rk4")
             rk4 = false;
+        else if (arg == "--trace")
+            trace = true;
         else if (arg == "--threads" && i + 1 < argc)
             threads = std::atoi(argv[++i]);
         else if (arg == "--rk4-cap" && i + 1 < argc)
@@ -206,7 +216,7 @@ int main(int argc, char** argv) {
             only = argv[++i];
         else {
             std::fprintf(stderr, "usage: %s [--quick] [--threads N] [--rk4-cap S] [--no-rk4] "
-                                 "[--scene NAME]\n", argv[0]);
+                                 "[--scene NAME] [--trace]\n", argv[0]);
             return 2;
         }
     }
@@ -225,7 +235,7 @@ int main(int argc, char** argv) {
     try {
         for (const Scene& scene : scenes)
             if (only.empty() || only == scene.name)
-                runScene(scene, threads, rk4Cap, rk4);
+                runScene(scene, threads, rk4Cap, rk4, trace);
         if (only.empty() || only == "force")
             forcePass(quick);
     } catch (const std::exception& e) {

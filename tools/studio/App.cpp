@@ -270,7 +270,8 @@ void App::syncLive() {
         liveState_ = state;
         if (state->generation == shownVersion_) {
             if (state->positions.size() == doc.compiled().system.knotCount()) {
-                doc.compiled().system.position = state->positions; // the next edit warm-starts from here
+                // The next edit warm-starts from the shape shown.
+                doc.adoptPositions(state->positions, state->phase == LivePhase::Refine && state->converged);
                 positionsDirty_ = true;
                 reportDirty_ = true;
             }

@@ -474,6 +474,7 @@ void NewtonRun::report(bool force) {
     progress.steps = steps_;
     progress.seconds = now;
     progress.stiffnessScale = scale_;
+    progress.positions = x_;
     options_.progress(progress);
 }
 

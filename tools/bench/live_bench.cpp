@@ -1,0 +1,156 @@
+// Benchmark of the studio's live preview: how long after an edit the re-relaxed shape of a
+// 20,000-knot sculpture is there to show. It drives the studio's own path without a window: the
+// document executes a drag's commands (merged, as a drag does; each recompiles and warm-starts
+// from the shape shown), the LiveRelaxer (kernel/interaction/LiveRelaxer.h, the studio's options:
+// soft preview stiffness, tolerance 1e-3, the default backend) re-relaxes, and the latency is the
+// wall time from the edit to the converged preview shape being published. At 30 frames per second
+// a frame lasts 33 ms.
+//
+// Drags (each step one command, one after the other):
+//   bar length   +0.5 % per step (same topology: the fast backend reuses its analysis)
+//   rows         +1 row per step (new topology: a new ordering and analysis every step)
+//
+//   netsculpt-bench-live                 the studio's 20k-knot demo tube, 20 + 10 steps
+//   netsculpt-bench-live --knots N       another size      --steps N   steps per drag
+//   --backend NAME                       the preview's backend (default: the studio's)
+
+#include "commands/Document.h"
+#include "interaction/DemoScenes.h"
+#include "interaction/LiveRelaxer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <string>
+#include <vector>
+
+using namespace netsculpt;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr double kFrameSeconds = 1.0 / 30;
+
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// Waits until the run for `generation` has ended; returns its final state.
+std::shared_ptr<const LiveState> awaitRun(const LiveRelaxer& live, std::uint64_t generation) {
+    for (;;) {
+        live.waitIdle(1.0);
+        const auto state = live.latest();
+        if (state && state->generation == generation && !state->running)
+            return state;
+    }
+}
+
+struct StepTiming {
+    double editSeconds = 0;    ///< the command: validation, recompilation, warm start
+    double relaxSeconds = 0;   ///< preview() to the converged shape published
+    bool converged = false;
+    std::int64_t steps = 0;    ///< the backend's steps (Newton iterations for the fast one)
+};
+
+/// Relaxes the document's current system as the studio does after an edit; shows the result
+/// (copies the positions back, so the next edit warm-starts from them).
+StepTiming previewNow(Document& doc, LiveRelaxer& live, std::uint64_t generation) {
+    StepTiming timing;
+    const auto t0 = Clock::now();
+    live.preview(doc.compiled().system, generation);
+    const auto state = awaitRun(live, generation);
+    timing.relaxSeconds = secondsSince(t0);
+    timing.converged = state->converged;
+    timing.steps = state->steps;
+    if (state->positions.size() == doc.compiled().system.knotCount())
+        doc.adoptPositions(state->positions, false);
+    return timing;
+}
+
+double percentile(std::vector<double> values, double p) {
+    std::sort(values.begin(), values.end());
+    const auto i = static_cast<std::size_t>(p * static_cast<double>(values.size() - 1) + 0.5);
+    return values[i];
+}
+
+void runDrag(const char* name, Document& doc, LiveRelaxer& live, std::uint64_t& generation,
+             int steps, const std::function<Command(int)>& commandAt) {
+    std::vector<double> edit, relax, total, iterations;
+    int converged = 0, withinFrame = 0;
+    for (int step = 1; step <= steps; ++step) {
+        const auto t0 = Clock::now();
+        doc.execute(commandAt(step), /*merge=*/true);
+        const double editSeconds = secondsSince(t0);
+        const StepTiming timing = previewNow(doc, live, ++generation);
+        edit.push_back(editSeconds);
+        relax.push_back(timing.relaxSeconds);
+        iterations.push_back(static_cast<double>(timing.steps));
+        total.push_back(editSeconds + timing.relaxSeconds);
+        converged += timing.converged ? 1 : 0;
+        withinFrame += editSeconds + timing.relaxSeconds <= kFrameSeconds ? 1 : 0;
+    }
+    doc.endGesture();
+    std::printf("%-11s %5d steps  edit median %6.1f ms  re-relax median %6.1f ms (max %6.1f)  "
+                "edit to shape median %6.1f ms, 90%% %6.1f ms  within one 30 fps frame: %d/%d  "
+                "converged: %d/%d  steps median %.0f\n",
+                name, steps, 1e3 * percentile(edit, 0.5), 1e3 * percentile(relax, 0.5),
+                1e3 * *std::max_element(relax.begin(), relax.end()), 1e3 * percentile(total, 0.5),
+                1e3 * percentile(total, 0.9), withinFrame, steps, converged, steps, percentile(iterations, 0.5));
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    int knots = 20000, steps = 20;
+    LiveRelaxOptions options; // the studio's
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg == "--knots" && i + 1 < argc)
+            knots = std::atoi(argv[++i]);
+        else if (arg == "--steps" && i + 1 < argc)
+            steps = std::atoi(argv[++i]);
+        else if (arg == "--publish" && i + 1 < argc)
+            options.publishInterval = std::atof(argv[++i]);
+        else if (arg == "--backend" && i + 1 < argc)
+            options.backend = argv[++i];
+        else {
+            std::fprintf(stderr, "usage: %s [--knots N] [--steps N] [--backend NAME]\n", argv[0]);
+            return 2;
+        }
+    }
+    if (knots < 100 || steps < 1) {
+        std::fprintf(stderr, "netsculpt-bench-live: --knots must be >= 100 and --steps >= 1\n");
+        return 2;
+    }
+    try {
+        Document doc;
+        buildLargeDemoSculpture(doc, knots);
+        const PieceId piece = doc.sculpture().pieces.begin()->first;
+        const Piece start = doc.sculpture().pieces.begin()->second;
+        const MassSpringSystem& system = doc.compiled().system;
+        std::printf("netsculpt-bench-live: the studio's demo tube, %zu knots, %zu bars, %d x %d; "
+                    "preview backend %s, stiffness x%.3g, tolerance %.0e\n",
+                    system.knotCount(), system.barCount(), start.rows, start.columns,
+                    options.backend.c_str(), previewScale(system, options.previewStiffnessScale),
+                    options.previewTolerance);
+        LiveRelaxer live(options);
+        std::uint64_t generation = 1;
+        const StepTiming settle = previewNow(doc, live, generation);
+        std::printf("first settle from the Eq. 2 start: %.2f s (%s, %lld steps)\n",
+                    settle.relaxSeconds, settle.converged ? "converged" : "not converged",
+                    static_cast<long long>(settle.steps));
+        const double bar = start.bar.at(0);
+        runDrag("bar length", doc, live, generation, steps, [&](int step) -> Command {
+            return SetBarLengthCommand{piece, std::nullopt, std::nullopt, bar * (1 + 0.005 * step)};
+        });
+        const int rows = doc.sculpture().pieces.at(piece).rows;
+        runDrag("rows", doc, live, generation, std::max(1, steps / 2),
+                [&](int step) -> Command { return SetRowsCommand{piece, rows + step}; });
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "netsculpt-bench-live: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
