@@ -69,8 +69,13 @@ constexpr int kMaxBacktracks = 30;
 // Levenberg shift mu = lambda * (mean diagonal of the Newton matrix). lambda never goes below
 // kMinShift (it keeps exactly singular directions, such as the out-of-plane motion of a planar
 // slack net, factorizable), jumps to at least kFailShift when a factorization or a line search
-// fails and grows tenfold per further failure; beyond kMaxShift the run has diverged.
+// fails and grows tenfold per further failure; beyond kMaxShift the run has diverged. The last
+// stage, near an equilibrium, lets it fall to kFinalMinShift: kMinShift times the mean diagonal
+// (the bars' axial stiffness) is a thousandth of the geometric stiffness of a bar carrying one
+// knot, which would make the last iterations converge linearly at that rate instead of
+// quadratically.
 constexpr double kMinShift = 1e-10;
+constexpr double kFinalMinShift = 1e-14;
 constexpr double kFailShift = 1e-6;
 constexpr double kMaxShift = 1e6;
 // Mixed stage: a step is taken while the residual grows by less than kMixedGrowth; when the best
@@ -552,7 +557,8 @@ RelaxResult NewtonRun::run() {
         bool mixed = stage.mixed;
         double best = residual_;
         int sinceBest = 0;
-        shift_ = kMinShift;
+        const double minShift = stageIndex + 1 == stages.size() ? kFinalMinShift : kMinShift;
+        shift_ = minShift;
         if (stageIndex == 1 && slack) // later stages go on with the previous one's
             damping_ = kDampingStart;
         const std::int64_t stageStart = steps_;
@@ -654,7 +660,7 @@ RelaxResult NewtonRun::run() {
             takeStep(alpha, mixed);
             residual_ = evaluate(x_);
             if (alpha == 1.0)
-                shift_ = std::max(shift_ * 0.1, kMinShift);
+                shift_ = std::max(shift_ * 0.1, minShift);
             if (!mixed && !windy_ && slack) {
                 // Trust-region style update of the weight-scaled shift from the ratio of the
                 // full step's actual to predicted decrease (model: E - F.p + 1/2 p.H p, with
