@@ -38,7 +38,8 @@ void checkSizes(const MassSpringSystem& system) {
     check(system.restLength.size(), bars, "restLength");
     check(system.kTension.size(), bars, "kTension");
     check(system.kCompression.size(), bars, "kCompression");
-    if (knots >= std::numeric_limits<std::uint32_t>::max() / 2 ||
+    // Bars keep their ends as 32-bit byte offsets into the positions (24 bytes per knot).
+    if (knots >= std::numeric_limits<std::uint32_t>::max() / sizeof(Vec3) ||
         bars >= std::numeric_limits<std::uint32_t>::max() / 2)
         badSystem("too many knots or bars (" + std::to_string(knots) + ", " + std::to_string(bars) +
                   ")");
@@ -71,6 +72,15 @@ inline SpringForce springForce(const Vec3& pa, const Vec3& pb, double restLength
     return {Vec3{d.x * c, d.y * c, d.z * c}, t};
 }
 
+/// The Vec3 at a byte offset into an array of them (bars keep their ends as byte offsets: an
+/// address is then one addition, in scalar and in SIMD code alike).
+inline const Vec3& at(const Vec3* array, std::uint32_t offset) {
+    return *reinterpret_cast<const Vec3*>(reinterpret_cast<const char*>(array) + offset);
+}
+inline Vec3& at(Vec3* array, std::uint32_t offset) {
+    return *reinterpret_cast<Vec3*>(reinterpret_cast<char*>(array) + offset);
+}
+
 inline void addTo(Vec3& total, const Vec3& f) {
     total.x += f.x;
     total.y += f.y;
@@ -90,7 +100,8 @@ struct SpringForces4 {
     __m256d tension;
 };
 /// (x, y, z, next x) of a position, or (x, y, z, 0) if Masked (for the array's last one).
-template <bool Masked> inline __m256d loadVec3(const Vec3* p) {
+template <bool Masked> inline __m256d loadVec3(const Vec3& v) {
+    const Vec3* p = &v;
     if constexpr (Masked)
         return _mm256_maskload_pd(&p->x, _mm256_set_epi64x(0, -1, -1, -1));
     else
@@ -98,13 +109,13 @@ template <bool Masked> inline __m256d loadVec3(const Vec3* p) {
 }
 /// Masked: some bar may end at the last knot (a plain 32-byte load would read past the array).
 template <bool Masked>
-inline SpringForces4 springForces4(const Vec3* positions, const std::uint32_t* ends,
+inline SpringForces4 springForces4(const Vec3* positions, const std::uint32_t* endOffsets,
                                    const double* restLength, const double* kTension,
                                    const double* kCompression, __m256d scale) {
     __m256d d[4]; // (x, y, z, _) of p_b - p_a; the fourth lane is never used
     for (int i = 0; i < 4; ++i)
-        d[i] = _mm256_sub_pd(loadVec3<Masked>(positions + ends[2 * i + 1]),
-                             loadVec3<Masked>(positions + ends[2 * i]));
+        d[i] = _mm256_sub_pd(loadVec3<Masked>(at(positions, endOffsets[2 * i + 1])),
+                             loadVec3<Masked>(at(positions, endOffsets[2 * i])));
     // Transpose to x, y, z of the four bars.
     const __m256d t0 = _mm256_unpacklo_pd(d[0], d[1]), t1 = _mm256_unpackhi_pd(d[0], d[1]);
     const __m256d t2 = _mm256_unpacklo_pd(d[2], d[3]), t3 = _mm256_unpackhi_pd(d[2], d[3]);
@@ -140,8 +151,9 @@ inline SpringForces4 springForces4(const Vec3* positions, const std::uint32_t* e
     return out;
 }
 inline void addTo(Vec3& total, __m128d xy, __m128d z) {
-    _mm_storeu_pd(&total.x, _mm_add_pd(_mm_loadu_pd(&total.x), xy));
-    _mm_store_sd(&total.z, _mm_add_sd(_mm_load_sd(&total.z), z));
+    // f + total: the same bits as total + f, and the load folds into the addition.
+    _mm_storeu_pd(&total.x, _mm_add_pd(xy, _mm_loadu_pd(&total.x)));
+    _mm_store_sd(&total.z, _mm_add_sd(z, _mm_load_sd(&total.z)));
 }
 inline void subtractFrom(Vec3& total, __m128d xy, __m128d z) {
     _mm_storeu_pd(&total.x, _mm_sub_pd(_mm_loadu_pd(&total.x), xy));
@@ -181,7 +193,7 @@ ForceField::ForceField(const MassSpringSystem& system) {
         inverseWeight_[j] = 1.0 / (system.mass[j] * g);
     }
 
-    ends_.resize(2 * bars);
+    endOffsets_.resize(2 * bars);
     restLength_ = system.restLength;
     kTension_ = system.kTension;
     kCompression_ = system.kCompression;
@@ -201,8 +213,8 @@ ForceField::ForceField(const MassSpringSystem& system) {
         if (!std::isfinite(system.kCompression[b]) || system.kCompression[b] < 0)
             badSystem("bar " + std::to_string(b) + " has kCompression " +
                       formatNumber(system.kCompression[b]) + " N/m; must be finite and >= 0");
-        ends_[2 * b] = a;
-        ends_[2 * b + 1] = e;
+        endOffsets_[2 * b] = a * std::uint32_t{sizeof(Vec3)};
+        endOffsets_[2 * b + 1] = e * std::uint32_t{sizeof(Vec3)};
         ++degree[a];
         ++degree[e];
     }
@@ -219,10 +231,10 @@ ForceField::ForceField(const MassSpringSystem& system) {
     std::vector<std::uint32_t> next(adjacencyStart_.begin(), adjacencyStart_.end() - 1);
     for (std::size_t b = 0; b < bars; ++b) {
         const auto bar = static_cast<std::uint32_t>(b);
-        adjacency_[next[ends_[2 * b]]] = 2 * bar;
-        adjacentBars_[next[ends_[2 * b]]++] = bar;
-        adjacency_[next[ends_[2 * b + 1]]] = 2 * bar + 1;
-        adjacentBars_[next[ends_[2 * b + 1]]++] = bar;
+        adjacency_[next[system.barA[b]]] = 2 * bar;
+        adjacentBars_[next[system.barA[b]]++] = bar;
+        adjacency_[next[system.barB[b]]] = 2 * bar + 1;
+        adjacentBars_[next[system.barB[b]]++] = bar;
     }
     barForce_.resize(bars);
 
@@ -244,7 +256,7 @@ ForceField::ForceField(const MassSpringSystem& system) {
     knotsBelow_.resize(bars);
     std::uint32_t largest = 0;
     for (std::size_t b = 0; b < bars; ++b) {
-        largest = std::max({largest, ends_[2 * b] + 1, ends_[2 * b + 1] + 1});
+        largest = std::max({largest, system.barA[b] + 1, system.barB[b] + 1});
         knotsBelow_[b] = largest;
     }
 }
@@ -270,16 +282,17 @@ std::span<const std::uint32_t> ForceField::barsOfKnot(std::size_t j) const {
 
 void ForceField::computeBars(const Vec3* positions, std::size_t begin, std::size_t end,
                              double* tension) {
+    const std::uint32_t* const ends = endOffsets_.data();
     std::size_t b = begin;
 #if defined(__AVX2__)
     const __m256d scale = _mm256_set1_pd(scale_);
     for (; b + 4 <= end; b += 4) {
-        const SpringForces4 f =
-            b + 4 <= unmaskedEnd_ ? springForces4<false>(positions, &ends_[2 * b], &restLength_[b],
-                                                         &kTension_[b], &kCompression_[b], scale)
-                                  : springForces4<true>(positions, &ends_[2 * b], &restLength_[b],
-                                                        &kTension_[b], &kCompression_[b], scale);
-        for (int i = 0; i < 4; ++i) {
+        const SpringForces4 f = b + 4 <= unmaskedEnd_
+                                    ? springForces4<false>(positions, ends + 2 * b, &restLength_[b],
+                                                           &kTension_[b], &kCompression_[b], scale)
+                                    : springForces4<true>(positions, ends + 2 * b, &restLength_[b],
+                                                          &kTension_[b], &kCompression_[b], scale);
+        for (std::size_t i = 0; i < 4; ++i) {
             _mm_storeu_pd(&barForce_[b + i].x, f.xy[i]);
             _mm_store_sd(&barForce_[b + i].z, f.z[i]);
         }
@@ -288,8 +301,9 @@ void ForceField::computeBars(const Vec3* positions, std::size_t begin, std::size
     }
 #endif
     for (; b < end; ++b) {
-        const SpringForce f = springForce(positions[ends_[2 * b]], positions[ends_[2 * b + 1]],
-                                          restLength_[b], kTension_[b], kCompression_[b], scale_);
+        const SpringForce f =
+            springForce(at(positions, ends[2 * b]), at(positions, ends[2 * b + 1]), restLength_[b],
+                        kTension_[b], kCompression_[b], scale_);
         barForce_[b] = f.force;
         if (tension)
             tension[b] = f.tension;
@@ -297,7 +311,7 @@ void ForceField::computeBars(const Vec3* positions, std::size_t begin, std::size
     if (hasWind_)
         for (b = begin; b < end; ++b) {
             // q L times the part of the wind direction normal to the bar, half to each end.
-            const Vec3 d = positions[ends_[2 * b + 1]] - positions[ends_[2 * b]];
+            const Vec3 d = at(positions, ends[2 * b + 1]) - at(positions, ends[2 * b]);
             const double length = std::sqrt(squaredLength(d));
             const Vec3 normal = windDirection_ - d * (windDirection_.dot(d) / (length * length));
             barWind_[b] = length > 0 ? normal * (0.5 * windPressure_ * length) : Vec3{};
@@ -316,7 +330,7 @@ void ForceField::streamBars(const Vec3* positions, Vec3* force, std::size_t begi
                             std::size_t* nextKnot) const {
     // Local copies: the compiler cannot know that the stores to force leave these alone.
     const Vec3* const weight = weight_.data();
-    const std::uint32_t* const ends = ends_.data();
+    const std::uint32_t* const ends = endOffsets_.data();
     const std::uint32_t* const knotsBelow = knotsBelow_.data();
     const double* const restLength = restLength_.data();
     const double* const kTension = kTension_.data();
@@ -328,38 +342,43 @@ void ForceField::streamBars(const Vec3* positions, Vec3* force, std::size_t begi
              ++j)
             force[j] = weight[j];
     };
-    auto mine = [&](std::uint32_t k) { return !Checked || (k >= firstKnot && k < endKnot); };
+    // Is the knot at this byte offset one of [firstKnot, endKnot)?
+    const std::uint32_t firstOffset = static_cast<std::uint32_t>(firstKnot * sizeof(Vec3));
+    const std::uint32_t offsetSpan =
+        static_cast<std::uint32_t>((endKnot - firstKnot) * sizeof(Vec3));
+    auto mine = [&](std::uint32_t offset) { return !Checked || offset - firstOffset < offsetSpan; };
     std::size_t b = begin;
 #if defined(__AVX2__)
     // Four bars at a time, added to their knots right away: the additions of one group then
     // overlap the square roots and divisions of the next (computing many groups ahead is slower).
     const __m256d scale = _mm256_set1_pd(scale_);
+    const std::size_t unmaskedEnd = unmaskedEnd_;
     for (; b + 4 <= end; b += 4) {
-        const SpringForces4 f = b + 4 <= unmaskedEnd_
+        const SpringForces4 f = b + 4 <= unmaskedEnd
                                     ? springForces4<false>(positions, ends + 2 * b, restLength + b,
                                                            kTension + b, kCompression + b, scale)
                                     : springForces4<true>(positions, ends + 2 * b, restLength + b,
                                                           kTension + b, kCompression + b, scale);
         startKnots(b + 3);
         for (std::size_t i = 0; i < 4; ++i) {
-            const std::uint32_t ka = ends[2 * (b + i)], kb = ends[2 * (b + i) + 1];
-            if (mine(ka))
-                addTo(force[ka], f.xy[i], f.z[i]);
-            if (mine(kb))
-                subtractFrom(force[kb], f.xy[i], f.z[i]);
+            const std::uint32_t ea = ends[2 * (b + i)], eb = ends[2 * (b + i) + 1];
+            if (mine(ea))
+                addTo(at(force, ea), f.xy[i], f.z[i]);
+            if (mine(eb))
+                subtractFrom(at(force, eb), f.xy[i], f.z[i]);
         }
     }
 #endif
     for (; b < end; ++b) {
         startKnots(b);
-        const std::uint32_t ka = ends[2 * b], kb = ends[2 * b + 1];
-        const Vec3 f = springForce(positions[ka], positions[kb], restLength[b], kTension[b],
+        const std::uint32_t ea = ends[2 * b], eb = ends[2 * b + 1];
+        const Vec3 f = springForce(at(positions, ea), at(positions, eb), restLength[b], kTension[b],
                                    kCompression[b], scale_)
                            .force;
-        if (mine(ka))
-            addTo(force[ka], f);
-        if (mine(kb))
-            subtractFrom(force[kb], f);
+        if (mine(ea))
+            addTo(at(force, ea), f);
+        if (mine(eb))
+            subtractFrom(at(force, eb), f);
     }
     *nextKnot = j;
 }

@@ -89,8 +89,8 @@ class ForceField {
 
     bool isFixed(std::size_t j) const { return fixed_[j] != 0; }
     /// The knots at the ends of bar b.
-    std::uint32_t barEndA(std::size_t b) const { return ends_[2 * b]; }
-    std::uint32_t barEndB(std::size_t b) const { return ends_[2 * b + 1]; }
+    std::uint32_t barEndA(std::size_t b) const { return endOffsets_[2 * b] / sizeof(Vec3); }
+    std::uint32_t barEndB(std::size_t b) const { return endOffsets_[2 * b + 1] / sizeof(Vec3); }
     /// kTension of bar b in N/m at scale 1.
     double barTensionStiffness(std::size_t b) const { return kTension_[b]; }
     /// The bars of knot j (indices into the bars), in the fixed order of the sum.
@@ -109,7 +109,9 @@ class ForceField {
     std::pair<std::size_t, std::size_t> streamBarRange(std::size_t begin, std::size_t end) const;
 
     // Hot per-bar data, struct of arrays for SIMD: 32 bytes per bar.
-    std::vector<std::uint32_t> ends_;   ///< knots at the ends of bar b: a at 2 b, b at 2 b + 1
+    /// Byte offsets of the knots at the ends of bar b in a Vec3 array (sizeof(Vec3) times the
+    /// knot): end a at 2 b, end b at 2 b + 1.
+    std::vector<std::uint32_t> endOffsets_;
     std::vector<double> restLength_;    ///< m
     std::vector<double> kTension_;      ///< N/m at scale 1
     std::vector<double> kCompression_;  ///< N/m at scale 1
