@@ -13,6 +13,7 @@
 //   netsculpt-bench-live                 the studio's 20k-knot demo tube, 20 + 10 steps
 //   netsculpt-bench-live --knots N       another size      --steps N   steps per drag
 //   --backend NAME                       the preview's backend (default: the studio's)
+//   --preview-scale S                    the preview's stiffness scale (default: the studio's)
 
 #include "commands/Document.h"
 #include "interaction/DemoScenes.h"
@@ -111,12 +112,13 @@ int main(int argc, char** argv) {
             knots = std::atoi(argv[++i]);
         else if (arg == "--steps" && i + 1 < argc)
             steps = std::atoi(argv[++i]);
-        else if (arg == "--publish" && i + 1 < argc)
-            options.publishInterval = std::atof(argv[++i]);
+        else if (arg == "--preview-scale" && i + 1 < argc)
+            options.previewStiffnessScale = std::atof(argv[++i]);
         else if (arg == "--backend" && i + 1 < argc)
             options.backend = argv[++i];
         else {
-            std::fprintf(stderr, "usage: %s [--knots N] [--steps N] [--backend NAME]\n", argv[0]);
+            std::fprintf(stderr, "usage: %s [--knots N] [--steps N] [--backend NAME] "
+                                 "[--preview-scale S]\n", argv[0]);
             return 2;
         }
     }

@@ -70,10 +70,10 @@ constexpr int kMaxBacktracks = 30;
 // kMinShift (it keeps exactly singular directions, such as the out-of-plane motion of a planar
 // slack net, factorizable), jumps to at least kFailShift when a factorization or a line search
 // fails and grows tenfold per further failure; beyond kMaxShift the run has diverged. The last
-// stage, near an equilibrium, lets it fall to kFinalMinShift: kMinShift times the mean diagonal
-// (the bars' axial stiffness) is a thousandth of the geometric stiffness of a bar carrying one
-// knot, which would make the last iterations converge linearly at that rate instead of
-// quadratically.
+// stage, when mixed (near an equilibrium), lets it fall to kFinalMinShift: kMinShift times the
+// mean diagonal (the bars' axial stiffness) is a thousandth of the geometric stiffness of a bar
+// carrying one knot, which would make the last iterations converge linearly at that rate
+// instead of quadratically.
 constexpr double kMinShift = 1e-10;
 constexpr double kFinalMinShift = 1e-14;
 constexpr double kFailShift = 1e-6;
@@ -557,7 +557,8 @@ RelaxResult NewtonRun::run() {
         bool mixed = stage.mixed;
         double best = residual_;
         int sinceBest = 0;
-        const double minShift = stageIndex + 1 == stages.size() ? kFinalMinShift : kMinShift;
+        const double minShift =
+            stageIndex + 1 == stages.size() && stage.mixed ? kFinalMinShift : kMinShift;
         shift_ = minShift;
         if (stageIndex == 1 && slack) // later stages go on with the previous one's
             damping_ = kDampingStart;
