@@ -9,6 +9,12 @@
 #include <cmath>
 #include <limits>
 
+#ifdef __linux__
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+#endif
+
 namespace netsculpt {
 
 namespace {
@@ -97,7 +103,24 @@ void LiveRelaxer::publish(LiveState state) {
     latest_ = std::move(shared);
 }
 
+void LiveRelaxer::setNiceness(int niceness) { niceness_ = std::clamp(niceness, 0, 19); }
+
+#ifdef __linux__
+// On Linux the nice value is per thread: PRIO_PROCESS with a thread id reaches one thread.
+void LiveRelaxer::applyNiceness() {
+    const int wanted = niceness_;
+    if (wanted == appliedNiceness_) return;
+    const auto thread = static_cast<id_t>(syscall(SYS_gettid));
+    if (setpriority(PRIO_PROCESS, thread, std::min(startNice_ + wanted, 19)) == 0) appliedNiceness_ = wanted;
+}
+#else
+void LiveRelaxer::applyNiceness() {}
+#endif
+
 void LiveRelaxer::workerLoop() {
+#ifdef __linux__
+    startNice_ = getpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)));
+#endif
     for (;;) {
         Job job;
         {
@@ -109,6 +132,7 @@ void LiveRelaxer::workerLoop() {
             cancel_ = false;
             busy_ = true;
         }
+        applyNiceness();
         runJob(job);
         {
             std::lock_guard lock(mutex_);

@@ -79,6 +79,10 @@ class LiveRelaxer {
     std::shared_ptr<const LiveState> latest() const;
     /// Waits until no run is queued or running, up to `timeoutSeconds`. True when idle.
     bool waitIdle(double timeoutSeconds) const;
+    /// Runs the worker (and the threads it starts) at this nice value above the one it started
+    /// with, from the next run on: 0 (the default) to 19. Linux only (elsewhere nothing changes).
+    /// Going back down may be refused without privileges; the worker then stays lower.
+    void setNiceness(int niceness);
     const LiveRelaxOptions& options() const { return options_; }
 
   private:
@@ -89,6 +93,7 @@ class LiveRelaxer {
     };
     void start(const MassSpringSystem& system, std::uint64_t generation, LivePhase phase);
     void workerLoop();
+    void applyNiceness();
     void runJob(Job& job);
     void publish(LiveState state);
     bool superseded() const;
@@ -102,6 +107,9 @@ class LiveRelaxer {
     bool busy_ = false;
     bool quit_ = false;
     std::atomic<bool> cancel_{false};
+    std::atomic<int> niceness_{0}; ///< requested by setNiceness
+    int appliedNiceness_ = 0;      ///< worker thread only
+    int startNice_ = 0;            ///< worker thread only: its nice value when it started
     std::uint64_t sequence_ = 0;
     std::shared_ptr<const LiveState> latest_;
     std::unique_ptr<Relaxer> relaxer_; ///< used by the worker thread only

@@ -6,7 +6,15 @@
 #include "interaction/LiveRelaxer.h"
 #include "physics/Forces.h"
 
+#include <algorithm>
 #include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#ifdef __linux__
+#include <sys/resource.h>
+#endif
 
 using namespace netsculpt;
 using namespace netsculpt::test;
@@ -117,3 +125,43 @@ TEST_CASE("live relaxer: a system that cannot be relaxed reports an error", "[li
     CHECK(live.latest()->stopReason == "error");
     CHECK_THAT(live.latest()->error, Catch::Matchers::Contains("no knot is fixed"));
 }
+
+#ifdef __linux__
+namespace {
+
+/// Nice values of this process's threads, from /proc/self/task/*/stat (field 19).
+std::vector<int> threadNiceValues() {
+    std::vector<int> values;
+    for (const auto& task : std::filesystem::directory_iterator("/proc/self/task")) {
+        std::ifstream stat(task.path() / "stat");
+        std::string line;
+        std::getline(stat, line);
+        std::istringstream fields(line.substr(line.rfind(')') + 2)); // after the thread's name
+        std::string field;
+        for (int i = 3; i <= 19 && fields >> field; ++i)
+            if (i == 19) values.push_back(std::stoi(field));
+    }
+    return values;
+}
+
+} // namespace
+
+TEST_CASE("live relaxer: setNiceness lowers the worker's priority from the next run", "[live]") {
+    Scene scene;
+    const int base = getpriority(PRIO_PROCESS, 0);
+    REQUIRE(base <= 12);
+    LiveRelaxer live;
+    auto lowered = [&] {
+        const std::vector<int> nice = threadNiceValues();
+        return std::count(nice.begin(), nice.end(), base + 7);
+    };
+    live.preview(scene.doc.compiled().system, 1);
+    REQUIRE(live.waitIdle(60));
+    CHECK(lowered() == 0);
+    live.setNiceness(7);
+    live.preview(scene.doc.compiled().system, 2);
+    REQUIRE(live.waitIdle(60));
+    CHECK(lowered() == 1); // the worker, not the caller
+    CHECK(getpriority(PRIO_PROCESS, 0) == base);
+}
+#endif

@@ -30,6 +30,22 @@ static_assert(keys::Escape == GLFW_KEY_ESCAPE && keys::Home == GLFW_KEY_HOME && 
 
 namespace {
 
+/// The live relaxer's nice value when the frames are drawn on the CPU: its share of a core that a
+/// frame also wants is about a tenth.
+constexpr int kRelaxerNicenessBesideSoftwareRenderer = 10;
+
+/// s between two refreshes of the primary display (1/60 when it does not say).
+double displayFramePeriod() {
+    const GLFWvidmode* mode = glfwGetPrimaryMonitor() ? glfwGetVideoMode(glfwGetPrimaryMonitor()) : nullptr;
+    return mode && mode->refreshRate > 0 ? 1.0 / mode->refreshRate : 1.0 / 60;
+}
+
+/// Mesa's software rasterizers (llvmpipe, softpipe), which pay for every line and every pixel.
+bool softwareRenderer() {
+    const char* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    return name && (std::strstr(name, "llvmpipe") || std::strstr(name, "softpipe"));
+}
+
 App& appOf(GLFWwindow* window) { return *static_cast<App*>(glfwGetWindowUserPointer(window)); }
 
 Modifiers modsOf(int mods) {
@@ -98,14 +114,13 @@ void App::initWindow() {
         window_ = glfwCreateWindow(options_.width, options_.height, "netsculpt studio", nullptr, nullptr);
         if (!window_) throw std::runtime_error("cannot open an OpenGL 3.3 core window");
         glfwMakeContextCurrent(window_);
-        const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-        const bool software = renderer && (std::strstr(renderer, "llvmpipe") || std::strstr(renderer, "softpipe"));
-        if (attempt == 0 && software && options_.samples < 0) {
+        if (attempt == 0 && softwareRenderer() && options_.samples < 0) {
             glfwDestroyWindow(window_);
             window_ = nullptr;
         }
     }
     glfwSwapInterval(options_.vsync ? 1 : 0);
+    if (options_.vsync && softwareRenderer()) framePeriod_ = displayFramePeriod();
     glfwSetWindowUserPointer(window_, this);
     // Ours first: ImGui's backend chains to them after updating its own state.
     glfwSetCursorPosCallback(window_, onCursor);
@@ -129,6 +144,12 @@ void App::initWindow() {
     ImGui_ImplOpenGL3_Init("#version 330 core");
     glEnable(GL_MULTISAMPLE);
     renderer_.init();
+    // A software renderer draws with the CPU: runs of short bars that look straight on screen are
+    // drawn as one line, and the relaxation gives way to the frames (it gets the CPU they leave).
+    if (softwareRenderer()) {
+        renderer_.setBarMergeTolerance(NetLineOptions{}.tolerancePixels);
+        live_->setNiceness(kRelaxerNicenessBesideSoftwareRenderer);
+    }
 }
 
 void App::shutdownWindow() {
@@ -150,14 +171,26 @@ int App::run() {
     interaction_->frameAll();
     fpsWindowStart_ = std::chrono::steady_clock::now();
     auto afterFirstFrame = fpsWindowStart_; // the first frame (shader warm-up) is not measured
+    auto frameStart = fpsWindowStart_;
+    FrameClock relaxing, still;
     while (!quitRequested_ && !glfwWindowShouldClose(window_)) {
+        const bool relaxerRunning = !live_->waitIdle(0); // working, whether or not it has published yet
+        const bool settles = isLastFrame() && options_.settleSeconds > 0; // waits: not a frame time
         frame();
-        if (++frameIndex_ == 1) afterFirstFrame = std::chrono::steady_clock::now();
+        const auto frameEnd = std::chrono::steady_clock::now();
+        const double frameSeconds = std::chrono::duration<double>(frameEnd - frameStart).count();
+        if (++frameIndex_ == 1) afterFirstFrame = frameEnd;
+        else if (!settles) (relaxerRunning ? relaxing : still).add(frameSeconds);
+        frameStart = frameEnd;
         if (options_.exitAfterFrames > 0 && frameIndex_ >= options_.exitAfterFrames) break;
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - afterFirstFrame).count();
     std::printf("netsculpt-studio: %lld frames, %.1f fps, %zu knots\n", frameIndex_,
                 seconds > 0 ? double(frameIndex_ - 1) / seconds : 0.0, doc_->compiled().system.knotCount());
+    std::printf("netsculpt-studio: %.1f fps while relaxing (%lld frames, slowest %.0f ms), %.1f fps still (%lld "
+                "frames, slowest %.0f ms)\n",
+                relaxing.framesPerSecond(), relaxing.frames, 1e3 * relaxing.longest, still.framesPerSecond(),
+                still.frames, 1e3 * still.longest);
     if (liveState_)
         std::printf("netsculpt-studio: relaxation %s, residual %.3g at stiffness x%.3g\n",
                     liveState_->running ? "running" : liveState_->stopReason.c_str(), liveState_->residual,
@@ -165,7 +198,12 @@ int App::run() {
     return 0;
 }
 
+bool App::isLastFrame() const {
+    return options_.exitAfterFrames > 0 && frameIndex_ + 1 >= options_.exitAfterFrames;
+}
+
 void App::frame() {
+    const auto frameBegan = std::chrono::steady_clock::now();
     glfwPollEvents();
     if (glfwWindowShouldClose(window_) && !doc_->isClean() && !options_.play && options_.exitAfterFrames < 0) {
         glfwSetWindowShouldClose(window_, GLFW_FALSE); // ask first
@@ -176,7 +214,7 @@ void App::frame() {
     camera_.setViewport(fw, fh);
     playEvents();
 
-    const bool lastFrame = options_.exitAfterFrames > 0 && frameIndex_ + 1 >= options_.exitAfterFrames;
+    const bool lastFrame = isLastFrame();
     if (lastFrame && options_.settleSeconds > 0) { // let the preview (and the refine after it) finish
         const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(options_.settleSeconds);
         for (int round = 0; round < 4 && std::chrono::steady_clock::now() < until; ++round) {
@@ -203,6 +241,9 @@ void App::frame() {
     if (lastFrame && options_.screenshot) pendingScreenshot_ = *options_.screenshot;
     if (pendingScreenshot_) writePendingScreenshot();
     glfwSwapBuffers(window_);
+    // A software renderer's swap does not wait for the display: no frame sooner than the display
+    // shows it, and the CPU left goes to the relaxation.
+    if (framePeriod_ > 0) std::this_thread::sleep_until(frameBegan + std::chrono::duration<double>(framePeriod_));
 
     ++fpsFrames_;
     const auto now = std::chrono::steady_clock::now();

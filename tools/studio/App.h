@@ -15,6 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 #include <optional>
@@ -22,6 +23,18 @@
 struct GLFWwindow;
 
 namespace netsculpt::studio {
+
+/// Frames and their time, for the frame rates printed at exit.
+struct FrameClock {
+    long long frames = 0;
+    double seconds = 0;
+    double longest = 0; ///< s, the slowest frame
+    void add(double frameSeconds) {
+        ++frames, seconds += frameSeconds;
+        longest = std::max(longest, frameSeconds);
+    }
+    double framesPerSecond() const { return seconds > 0 ? double(frames) / seconds : 0.0; }
+};
 
 class App {
   public:
@@ -83,6 +96,7 @@ class App {
     void attachSession();
     void replaceDocument(Document next);
     void frame();
+    bool isLastFrame() const; ///< the frame about to be drawn is the last of --exit-after-frames
     void playEvents();
     void syncLive();
     Overlay buildOverlay() const;
@@ -130,6 +144,7 @@ class App {
 
     std::string notice_;
     bool noticeIsError_ = false;
+    double framePeriod_ = 0; ///< s; > 0: frames are paced to the display here (its swap does not wait)
     double fps_ = 0;
     std::chrono::steady_clock::time_point fpsWindowStart_{};
     int fpsFrames_ = 0;

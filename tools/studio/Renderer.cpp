@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -18,7 +17,7 @@ constexpr float kBackgroundTop[3] = {0.26f, 0.29f, 0.34f};
 constexpr float kBackgroundBottom[3] = {0.07f, 0.08f, 0.10f};
 constexpr float kFog[3] = {0.14f, 0.16f, 0.19f};
 constexpr float kRailColour[4] = {0.78f, 0.80f, 0.84f, 1.0f};
-constexpr GLsizei kMaxKnotDotVertices = 20000; // bar end points; above this the dots are left out
+constexpr std::size_t kMaxKnotDots = 5000; // knots; above this no dots (a software renderer pays per point)
 
 GLuint compile(GLenum type, const char* source) {
     const GLuint shader = glCreateShader(type);
@@ -80,6 +79,12 @@ void upload(GLuint vbo, const std::vector<float>& data) {
     glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(data.size() * sizeof(float)), data.data(), GL_DYNAMIC_DRAW);
 }
 
+/// The colour at 6 bits a channel: bars whose keys differ are never drawn as one line.
+std::uint32_t colourKey(const std::array<float, 3>& c) {
+    auto level = [](float v) { return std::uint32_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 63)); };
+    return level(c[0]) << 12 | level(c[1]) << 6 | level(c[2]);
+}
+
 /// Tension colour ramp: blue (low) - teal - yellow - red (the largest); slack bars grey.
 std::array<float, 3> tensionColour(double tension, double maxTension) {
     if (!(tension > 0) || !(maxTension > 0)) return {0.42f, 0.44f, 0.50f};
@@ -97,9 +102,9 @@ Renderer::~Renderer() {
     const GLuint programs[] = {linesProgram_, thickProgram_, sphereProgram_, backgroundProgram_};
     for (GLuint p : programs)
         if (p) glDeleteProgram(p);
-    const GLuint buffers[] = {barVbo_, railVbo_, gridVbo_, guideVbo_, sphereQuadVbo_, sphereInstanceVbo_};
+    const GLuint buffers[] = {barVbo_, knotVbo_, railVbo_, gridVbo_, guideVbo_, sphereQuadVbo_, sphereInstanceVbo_};
     glDeleteBuffers(GLsizei(std::size(buffers)), buffers);
-    const GLuint arrays[] = {barVao_, railVao_, gridVao_, guideVao_, sphereVao_, emptyVao_};
+    const GLuint arrays[] = {barVao_, knotVao_, railVao_, gridVao_, guideVao_, sphereVao_, emptyVao_};
     glDeleteVertexArrays(GLsizei(std::size(arrays)), arrays);
 }
 
@@ -109,6 +114,7 @@ void Renderer::init() {
     sphereProgram_ = link(shaders::kSphereVertex, shaders::kSphereFragment);
     backgroundProgram_ = link(shaders::kBackgroundVertex, shaders::kBackgroundFragment);
     makeColouredLines(barVao_, barVbo_);
+    makeColouredLines(knotVao_, knotVbo_);
     makeColouredLines(gridVao_, gridVbo_);
     makeColouredLines(guideVao_, guideVbo_);
 
@@ -176,22 +182,15 @@ void Renderer::setSculpture(const Sculpture& s, const CompiledSculpture& compile
     upload(gridVbo_, grid);
     gridVertices_ = GLsizei(grid.size() / 6);
 
-    // Bars grouped by piece, so one piece's bars are one range (for the highlight).
-    const MassSpringSystem& sys = compiled.system;
-    barOrder_.resize(sys.barCount());
-    std::iota(barOrder_.begin(), barOrder_.end(), 0u);
-    std::stable_sort(barOrder_.begin(), barOrder_.end(),
-                     [&](std::uint32_t a, std::uint32_t b) { return sys.barPiece[a] < sys.barPiece[b]; });
-    pieceRanges_.clear();
-    for (std::size_t i = 0; i < barOrder_.size(); ++i) {
-        auto& range = pieceRanges_[sys.barPiece[barOrder_[i]]];
-        if (range.second == 0) range.first = GLint(2 * i);
-        range.second += 2;
-    }
+    strands_ = buildStrands(compiled.system);
+    barA_ = compiled.system.barA;
+    barB_ = compiled.system.barB;
+    barPiece_ = compiled.system.barPiece;
+    linesStale_ = true;
 }
 
 void Renderer::setPositions(const Sculpture& s, const MassSpringSystem& sys, ColourBy colourBy) {
-    if (barOrder_.size() != sys.barCount()) return; // setSculpture first
+    if (barPiece_.size() != sys.barCount()) return; // setSculpture first
     std::vector<double> tension;
     maxTension_ = 0;
     if (colourBy == ColourBy::Tension) {
@@ -203,23 +202,80 @@ void Renderer::setPositions(const Sculpture& s, const MassSpringSystem& sys, Col
             maxTension_ = std::max(maxTension_, tension[b]);
         }
     }
-    barData_.resize(sys.barCount() * 12);
-    float* out = barData_.data();
-    PieceId lastPiece;
-    std::array<float, 3> colour{1, 1, 1};
-    for (std::uint32_t b : barOrder_) {
-        if (colourBy == ColourBy::Tension) colour = tensionColour(tension[b], maxTension_);
-        else if (sys.barPiece[b] != lastPiece) {
-            lastPiece = sys.barPiece[b];
-            const auto it = s.pieces.find(lastPiece);
+    barColour_.resize(sys.barCount());
+    barColourKey_.resize(sys.barCount());
+    for (std::size_t b = 0; b < sys.barCount(); ++b) {
+        if (colourBy == ColourBy::Tension) {
+            barColour_[b] = tensionColour(tension[b], maxTension_);
+        } else {
+            const auto it = s.pieces.find(sys.barPiece[b]);
             const Colour c = it != s.pieces.end() ? it->second.colour : Colour{};
-            colour = {float(c.r), float(c.g), float(c.b)};
+            barColour_[b] = {float(c.r), float(c.g), float(c.b)};
         }
-        for (std::uint32_t k : {sys.barA[b], sys.barB[b]}) {
-            const Vec3& p = sys.position[k];
+        barColourKey_[b] = colourKey(barColour_[b]);
+    }
+    knotPositions_ = sys.position;
+    linesStale_ = true;
+    uploadKnotDots();
+}
+
+void Renderer::uploadKnotDots() {
+    knotDots_ = 0;
+    if (knotPositions_.size() > kMaxKnotDots) return;
+    std::vector<std::array<float, 3>> knotColour(knotPositions_.size(), {1, 1, 1});
+    for (std::size_t b = 0; b < barColour_.size(); ++b) // a knot of two pieces takes the later one's colour
+        for (std::uint32_t k : {barA_[b], barB_[b]}) knotColour[k] = barColour_[b];
+    std::vector<float> data;
+    data.reserve(knotPositions_.size() * 6);
+    for (std::size_t k = 0; k < knotPositions_.size(); ++k) {
+        const Vec3& p = knotPositions_[k];
+        const std::array<float, 3>& c = knotColour[k];
+        data.insert(data.end(), {float(p.x), float(p.y), float(p.z), c[0], c[1], c[2]});
+    }
+    upload(knotVbo_, data);
+    knotDots_ = GLsizei(knotPositions_.size());
+}
+
+void Renderer::setBarMergeTolerance(double pixels) {
+    barMergeTolerance_ = std::max(0.0, pixels);
+    linesStale_ = true;
+}
+
+void Renderer::updateNetLines(const Camera& camera) {
+    const bool merging = barMergeTolerance_ > 0;
+    const std::array<float, 16> viewProjection = (camera.projection() * camera.view()).toFloat();
+    const bool cameraMoved = viewProjection != linesViewProjection_ || camera.width() != linesWidth_ ||
+                             camera.height() != linesHeight_;
+    if (!linesStale_ && !(merging && cameraMoved)) return;
+    linesStale_ = false;
+    linesViewProjection_ = viewProjection;
+    linesWidth_ = camera.width(), linesHeight_ = camera.height();
+
+    if (merging) {
+        NetLineOptions options;
+        options.tolerancePixels = barMergeTolerance_;
+        mergeStrands(strands_, projectKnots(knotPositions_, camera), barColourKey_, options, lines_);
+    } else {
+        strandBars(strands_, lines_);
+    }
+    uploadNetLines();
+}
+
+void Renderer::uploadNetLines() {
+    barData_.resize(lines_.size() * 12);
+    float* out = barData_.data();
+    pieceRanges_.clear();
+    for (std::size_t i = 0; i < lines_.size(); ++i) {
+        const NetLine& line = lines_[i];
+        const std::array<float, 3>& colour = barColour_[line.bar];
+        for (std::uint32_t k : {line.a, line.b}) {
+            const Vec3& p = knotPositions_[k];
             *out++ = float(p.x), *out++ = float(p.y), *out++ = float(p.z);
             *out++ = colour[0], *out++ = colour[1], *out++ = colour[2];
         }
+        auto& range = pieceRanges_[barPiece_[line.bar]]; // lines come piece by piece
+        if (range.second == 0) range.first = GLint(2 * i);
+        range.second += 2;
     }
     upload(barVbo_, barData_);
     barVertices_ = GLsizei(barData_.size() / 6);
@@ -227,8 +283,7 @@ void Renderer::setPositions(const Sculpture& s, const MassSpringSystem& sys, Col
 
 void Renderer::draw(const Camera& camera, const Overlay& overlay) {
     glViewport(0, 0, camera.width(), camera.height());
-    glClearColor(kFog[0], kFog[1], kFog[2], 1);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glClear(GL_DEPTH_BUFFER_BIT); // the background covers every pixel
     drawBackground();
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
@@ -248,7 +303,7 @@ void Renderer::drawBackground() {
     glUniform3fv(at(backgroundProgram_, "uTop"), 1, kBackgroundTop);
     glUniform3fv(at(backgroundProgram_, "uBottom"), 1, kBackgroundBottom);
     glBindVertexArray(emptyVao_);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
 }
 
 namespace {
@@ -260,6 +315,7 @@ void useLines(GLuint program, const Camera& camera, float radius) {
     glUniform2f(at(program, "uFogRange"), float(camera.distance - radius), float(camera.distance + radius));
     glUniform1f(at(program, "uAlpha"), 1.0f);
     glUniform1f(at(program, "uBrighten"), 0.0f);
+    glUniform2i(at(program, "uBrightVertices"), 0, 0);
     glUniform1f(at(program, "uPointSize"), 1.0f);
 }
 } // namespace
@@ -278,20 +334,25 @@ void Renderer::drawGrid(const Camera& camera) {
 }
 
 void Renderer::drawBars(const Camera& camera, PieceId highlight) {
+    updateNetLines(camera);
     if (!barVertices_) return;
     useLines(linesProgram_, camera, sceneRadius_);
+    // The highlighted piece, brighter, in the same pass: its lines are one range of vertices.
+    const auto range = pieceRanges_.find(highlight);
+    if (highlight && range != pieceRanges_.end()) {
+        glUniform1f(at(linesProgram_, "uBrighten"), 0.45f);
+        const auto [first, count] = range->second;
+        glUniform2i(at(linesProgram_, "uBrightVertices"), first, first + count);
+    }
     glBindVertexArray(barVao_);
     glDrawArrays(GL_LINES, 0, barVertices_);
-    if (barVertices_ <= kMaxKnotDotVertices) { // knots as dots (software renderers pay per point)
+    if (knotDots_) {
+        glUniform2i(at(linesProgram_, "uBrightVertices"), 0, 0);
         glEnable(GL_PROGRAM_POINT_SIZE);
         glUniform1f(at(linesProgram_, "uPointSize"), camera.height() > 900 ? 3.0f : 2.5f);
-        glDrawArrays(GL_POINTS, 0, barVertices_);
+        glBindVertexArray(knotVao_);
+        glDrawArrays(GL_POINTS, 0, knotDots_);
         glDisable(GL_PROGRAM_POINT_SIZE);
-    }
-    const auto range = pieceRanges_.find(highlight);
-    if (highlight && range != pieceRanges_.end()) { // the highlighted piece, brighter on top
-        glUniform1f(at(linesProgram_, "uBrighten"), 0.45f);
-        glDrawArrays(GL_LINES, range->second.first, range->second.second);
     }
 }
 

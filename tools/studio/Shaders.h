@@ -13,22 +13,24 @@ uniform mat4 uView;
 uniform vec3 uFogColour;
 uniform vec2 uFogRange;
 uniform float uPointSize;
+uniform float uBrighten;
+uniform ivec2 uBrightVertices; // [first, end): the vertices brightened by uBrighten
 out vec3 vColour;
 void main() {
     gl_Position = uViewProjection * vec4(aPosition, 1.0);
     gl_PointSize = uPointSize;
     float depth = -(uView * vec4(aPosition, 1.0)).z;
     float fog = clamp((depth - uFogRange.x) / (uFogRange.y - uFogRange.x), 0.0, 1.0);
-    vColour = mix(aColour, uFogColour, 0.5 * fog);
+    bool bright = gl_VertexID >= uBrightVertices.x && gl_VertexID < uBrightVertices.y;
+    vColour = mix(mix(aColour, uFogColour, 0.5 * fog), vec3(1.0), bright ? uBrighten : 0.0);
 }
 )";
 
 inline constexpr const char* kLinesFragment = R"(#version 330 core
 in vec3 vColour;
 uniform float uAlpha;
-uniform float uBrighten;
 out vec4 fragColour;
-void main() { fragColour = vec4(mix(vColour, vec3(1.0), uBrighten), uAlpha); }
+void main() { fragColour = vec4(vColour, uAlpha); }
 )";
 
 /// Thick lines: the geometry shader turns each segment into a screen-space quad of uWidth pixels
@@ -113,22 +115,23 @@ void main() {
 }
 )";
 
-/// A full-screen vertical gradient (no vertex buffer: the triangle comes from gl_VertexID).
+/// A full-screen vertical gradient: a quad (no vertex buffer: the corners come from gl_VertexID)
+/// whose colours are interpolated, cheaper on a software renderer than computing it per pixel.
 inline constexpr const char* kBackgroundVertex = R"(#version 330 core
-out float vHeight;
+uniform vec3 uTop;
+uniform vec3 uBottom;
+out vec3 vColour;
 void main() {
-    vec2 p = vec2(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID & 2) * 2 - 1));
-    vHeight = 0.5 * (p.y + 1.0);
+    vec2 p = vec2(float(gl_VertexID & 1) * 2.0 - 1.0, float(gl_VertexID & 2) - 1.0);
+    vColour = p.y > 0.0 ? uTop : uBottom;
     gl_Position = vec4(p, 0.999, 1.0);
 }
 )";
 
 inline constexpr const char* kBackgroundFragment = R"(#version 330 core
-in float vHeight;
-uniform vec3 uTop;
-uniform vec3 uBottom;
+in vec3 vColour;
 out vec4 fragColour;
-void main() { fragColour = vec4(mix(uBottom, uTop, clamp(vHeight, 0.0, 1.0)), 1.0); }
+void main() { fragColour = vec4(vColour, 1.0); }
 )";
 
 } // namespace netsculpt::studio::shaders
