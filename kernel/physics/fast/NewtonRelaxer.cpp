@@ -3,6 +3,7 @@
 #include "model/Error.h"
 #include "physics/Forces.h"
 #include "physics/ThreadPool.h"
+#include "physics/fast/HugePageArray.h"
 #include "physics/fast/SupernodalCholesky.h"
 
 #include <algorithm>
@@ -192,8 +193,8 @@ class NewtonRun {
     std::vector<Vec3> x_, trial_, force_, step_;
     std::vector<double> tension_;    ///< mixed stage: the bars' tension estimates, N
     std::vector<double> kCompression_; ///< the stage's compression stiffness per bar, N/m at scale 1
-    std::vector<double> barBlock_;   ///< 9 per bar: its Hessian block
-    std::vector<double> values_;     ///< the Newton matrix's blocks (SupernodalCholesky layout)
+    HugePageArray barBlock_;         ///< 9 per bar: its Hessian block
+    HugePageArray values_;           ///< the Newton matrix's blocks (SupernodalCholesky layout)
     std::vector<double> rhs_;        ///< 3 per free knot
     std::vector<double> barTerm_;    ///< per bar scratch for sums done in a fixed order
     std::vector<double> weightOf_;   ///< m_j |g| per knot
@@ -233,8 +234,8 @@ NewtonRun::NewtonRun(MassSpringSystem& system, const RelaxOptions& options,
     step_.assign(knots, Vec3{});
     tension_.assign(bars, 0.0);
     kCompression_ = system.kCompression;
-    barBlock_.assign(9 * bars, 0.0);
-    values_.assign(9 * (analysis.freeKnots.size() + analysis.pairs.size()), 0.0);
+    barBlock_.assign(9 * bars);
+    values_.assign(9 * (analysis.freeKnots.size() + analysis.pairs.size()));
     rhs_.assign(3 * analysis.freeKnots.size(), 0.0);
     barTerm_.assign(bars, 0.0);
     weightOf_.resize(knots);
@@ -351,7 +352,7 @@ void NewtonRun::assemble(bool mixed, bool exact) {
     });
     // Off-diagonal blocks: -H_b (bars in increasing order, so a shared block sums in order).
     const std::size_t pairBase = 9 * freeCount;
-    std::fill(values_.begin() + static_cast<std::ptrdiff_t>(pairBase), values_.end(), 0.0);
+    std::fill(values_.begin() + pairBase, values_.end(), 0.0);
     for (std::size_t b = 0; b < bars; ++b) {
         const std::int64_t p = analysis_.barPair[b];
         if (p >= 0)

@@ -312,7 +312,7 @@ void SupernodalCholesky::analyse(std::size_t nodes,
         }
     }
 
-    values_.assign(static_cast<std::size_t>(valueStart_[supers]), 0.0);
+    values_.assign(static_cast<std::size_t>(valueStart_[supers]));
     workers_.clear();
     analysed_ = true;
 }

@@ -13,6 +13,8 @@
 // thread runs it and whenever, so the factor and the solutions are bit-identical for any number
 // of threads.
 
+#include "physics/fast/HugePageArray.h"
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -95,7 +97,7 @@ class SupernodalCholesky {
     std::vector<std::uint32_t> taskParent_;  ///< the task waiting for t, or UINT32_MAX
     std::vector<std::uint32_t> taskWaits_;   ///< how many tasks t waits for
 
-    std::vector<double> values_; ///< the factor's dense blocks
+    HugePageArray values_; ///< the factor's dense blocks
     std::vector<Worker> workers_;
     std::size_t maxRows_ = 0;    ///< largest row count of a supernode
     bool failed_ = false;

@@ -1,0 +1,36 @@
+#include "physics/fast/HugePageArray.h"
+
+#include <cstdlib>
+#include <cstring>
+#include <new>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
+namespace netsculpt {
+
+namespace {
+constexpr std::size_t kHugePage = std::size_t(2) << 20;
+} // namespace
+
+void HugePageArray::Free::operator()(double* p) const { std::free(p); }
+
+void HugePageArray::assign(std::size_t n) {
+    data_.reset();
+    size_ = 0;
+    if (n == 0)
+        return;
+    const std::size_t bytes = (n * sizeof(double) + kHugePage - 1) / kHugePage * kHugePage;
+    void* memory = std::aligned_alloc(kHugePage, bytes);
+    if (!memory)
+        throw std::bad_alloc();
+#if defined(__linux__)
+    madvise(memory, bytes, MADV_HUGEPAGE); // advice only: ordinary pages when refused
+#endif
+    std::memset(memory, 0, bytes);
+    data_.reset(static_cast<double*>(memory));
+    size_ = n;
+}
+
+} // namespace netsculpt
