@@ -91,12 +91,15 @@ class App {
 
   private:
     void initWindow();
+    void initImGui();
+    void sampleFontAtlasUnfiltered();
     void shutdownWindow();
     void buildInitialDocument();
     void attachSession();
     void replaceDocument(Document next);
     void frame();
     bool isLastFrame() const; ///< the frame about to be drawn is the last of --exit-after-frames
+    void paceToDisplay();
     void playEvents();
     void syncLive();
     Overlay buildOverlay() const;
@@ -145,6 +148,7 @@ class App {
     std::string notice_;
     bool noticeIsError_ = false;
     double framePeriod_ = 0; ///< s; > 0: frames are paced to the display here (its swap does not wait)
+    std::chrono::steady_clock::time_point nextFrameDue_{}; ///< when the next frame may be shown
     double fps_ = 0;
     std::chrono::steady_clock::time_point fpsWindowStart_{};
     int fpsFrames_ = 0;
