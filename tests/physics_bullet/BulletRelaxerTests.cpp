@@ -218,6 +218,52 @@ TEST_CASE("a bullet run that ends early returns a finite state and says why", "[
         REQUIRE(start.position[j].isFinite());
 }
 
+// The realistic rope (EA 2e5 N) on a 480-knot tube: near the rest shape each step's linear solve
+// needs thousands of conjugate-gradient iterations (BulletRelaxer.h, "Solver settings"). With
+// the backend's defaults (Bullet's tolerance test at 1e-7, up to 100,000 iterations, 2 Newton
+// iterations) it converges in 26 steps; with Bullet's own (300 iterations, machine epsilon, 1
+// Newton iteration) it needed 1,817 (7 s), and has not converged after 10 times the defaults'.
+TEST_CASE("bullet's default solver settings converge a stiff net that bullet's own leave hovering",
+          "[bullet]") {
+    const CrossCheckSculpture c = tubeOnRing(Material{}, 2);
+    MassSpringSystem byDefaults = c.compiled.system, byBulletOwn = c.compiled.system;
+    const RelaxResult defaults = relaxBullet(byDefaults, options(1e-6));
+    REQUIRE(defaults.converged);
+    CHECK(defaults.stopReason == "converged");
+
+    BulletSettings bulletOwn;
+    bulletOwn.conjugateGradientIterations = 300;
+    bulletOwn.conjugateGradientTolerance = 2.220446049250313e-16;
+    bulletOwn.newtonIterations = 1;
+    RelaxOptions limited = options(1e-6);
+    limited.maxSteps = 10 * defaults.steps;
+    const RelaxResult own = relaxBullet(byBulletOwn, limited, bulletOwn);
+    std::printf("[bullet stiff] tube on a ring, rope     knots %4zu | defaults %.2e in %lld steps, "
+                "%.2f s | bullet's own settings %.2e after %lld steps, %.2f s\n",
+                byDefaults.knotCount(), defaults.residual, static_cast<long long>(defaults.steps),
+                defaults.seconds, own.residual, static_cast<long long>(own.steps), own.seconds);
+    CHECK_FALSE(own.converged);
+    CHECK(own.stopReason == "step limit");
+}
+
+// A step's solve gets only the conjugate-gradient iterations that fit in the time left: with no
+// tolerance test and a limit of 10^6 iterations, one step on the stiff tube would take about half a
+// minute; the run must still stop near its time limit.
+TEST_CASE("a long bullet solve does not overrun the time limit", "[bullet]") {
+    const CrossCheckSculpture c = tubeOnRing(Material{}, 2);
+    MassSpringSystem s = c.compiled.system;
+    BulletSettings endless;
+    endless.conjugateGradientIterations = 1'000'000;
+    endless.conjugateGradientTolerance = 0;
+    RelaxOptions o = options(1e-6);
+    o.maxSeconds = 0.3;
+    const RelaxResult r = relaxBullet(s, o, endless);
+    CHECK(r.stopReason == "time limit");
+    CHECK(r.steps >= 2);
+    CHECK(r.seconds < 3);
+    CHECK(std::isfinite(r.residual));
+}
+
 TEST_CASE("bullet keeps fixed knots, is deterministic, and stops at once when already at rest", "[bullet]") {
     Material soft;
     soft.stiffness = 50;
@@ -262,6 +308,9 @@ TEST_CASE("bullet refuses what it cannot do, naming it", "[bullet]") {
     BulletSettings settings;
     settings.conjugateGradientIterations = 0;
     CHECK_THROWS_WITH(BulletRelaxer(settings), Catch::Contains("conjugateGradientIterations"));
+    settings = {};
+    settings.conjugateGradientTolerance = -1e-8;
+    CHECK_THROWS_WITH(BulletRelaxer(settings), Catch::Contains("conjugateGradientTolerance"));
     settings = {};
     settings.maxTimeStep = -1;
     CHECK_THROWS_WITH(BulletRelaxer(settings), Catch::Contains("maxTimeStep"));

@@ -11,8 +11,8 @@
 //   cr=1    the same rope with compression ratio 1, where Bullet's model (one stiffness both
 //           ways) and Eq. 3 coincide; with the real rope Bullet's rest shape is not one of Eq. 3
 //           wherever bars end up compressed, and it stops "stalled" (BulletRelaxer.h)
-// For each run: wall seconds of relax(), how it stopped, the residual reached and the steps (RK4
-// steps, Newton iterations or Bullet steps); then a table with the ratios bullet / fast and
+// For each run: wall and CPU seconds of relax(), how it stopped, the residual reached and the steps
+// (RK4 steps, Newton iterations or Bullet steps); then a table with the ratios bullet / fast and
 // rk4 / fast of the times to converge ("> X" when the slower one hit the cap: it needs longer).
 //
 //   netsculpt-bench-compare                 2k, 20k and 200k knots, 15 s cap (about 8 min)
@@ -20,19 +20,28 @@
 //   --sizes LIST   comma-separated, of 0.2k, 2k, 20k, 200k     --cap S   per-run cap, s
 //   --threads N    force-evaluation threads of rk4 and fast (Bullet's solver is serial)
 //   --backends LIST   comma-separated, of bullet, rk4, fast (default: all three)
+//   --shapes LIST  comma-separated, of tube, sheet (default: both)
+//   --bullet-cg N  Bullet's conjugate-gradient iteration cap per Newton iteration
+//                  (BulletSettings::conjugateGradientIterations; default: the backend's)
+//   --bullet-cg-tol X  Bullet's conjugate-gradient stopping tolerance
+//                  (BulletSettings::conjugateGradientTolerance; default: the backend's)
+//   --bullet-newton N  Newton iterations per Bullet step (BulletSettings::newtonIterations)
 
 #include "BenchScenes.h"
 
 #include "physics/Backends.h"
 #include "physics/Forces.h"
 #include "physics/Relaxer.h"
+#include "physics/bullet/BulletRelaxer.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <exception>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -75,9 +84,11 @@ std::vector<NamedMaterial> materials() {
 struct Settings {
     std::vector<NetSize> sizes;
     std::vector<std::string> backends = kBackends;
+    std::vector<Shape> shapes = {Shape::tube, Shape::sheet};
     double cap = -1; ///< s; < 0 = the default for the mode
     int threads = 0;
     bool quick = false;
+    BulletSettings bullet; ///< the bullet backend's solver knobs
 };
 
 /// One backend's run on one net.
@@ -85,7 +96,9 @@ struct Run {
     std::string backend;
     std::string stopReason;
     bool converged = false;
-    double seconds = 0;  ///< wall time of relax()
+    double seconds = 0; ///< wall time of relax()
+    /// CPU time of the process during relax(), all threads (the machine may be shared)
+    double cpuSeconds = 0;
     double residual = 0; ///< residual() of Eq. 3 at the positions returned
     long long steps = 0;
 };
@@ -139,6 +152,23 @@ bool parseBackends(const std::string& list, std::vector<std::string>& backends) 
     return !backends.empty();
 }
 
+bool parseShapes(const std::string& list, std::vector<Shape>& shapes) {
+    shapes.clear();
+    std::stringstream stream(list);
+    std::string name;
+    while (std::getline(stream, name, ',')) {
+        if (name == "tube")
+            shapes.push_back(Shape::tube);
+        else if (name == "sheet")
+            shapes.push_back(Shape::sheet);
+        else {
+            std::fprintf(stderr, "unknown shape '%s': use tube or sheet\n", name.c_str());
+            return false;
+        }
+    }
+    return !shapes.empty();
+}
+
 void applyModeDefaults(Settings& settings) {
     if (settings.sizes.empty())
         for (const NetSize& size : knownSizes())
@@ -160,13 +190,28 @@ bool parseArguments(int argc, char** argv, Settings& settings) {
         } else if (arg == "--backends" && hasValue) {
             if (!parseBackends(argv[++i], settings.backends))
                 return false;
+        } else if (arg == "--shapes" && hasValue) {
+            if (!parseShapes(argv[++i], settings.shapes))
+                return false;
         } else if (arg == "--cap" && hasValue) {
             settings.cap = std::atof(argv[++i]);
             if (!(settings.cap > 0))
                 return false;
         } else if (arg == "--threads" && hasValue)
             settings.threads = std::atoi(argv[++i]);
-        else
+        else if (arg == "--bullet-cg" && hasValue) {
+            settings.bullet.conjugateGradientIterations = std::atoi(argv[++i]);
+            if (settings.bullet.conjugateGradientIterations < 1)
+                return false;
+        } else if (arg == "--bullet-newton" && hasValue) {
+            settings.bullet.newtonIterations = std::atoi(argv[++i]);
+            if (settings.bullet.newtonIterations < 1)
+                return false;
+        } else if (arg == "--bullet-cg-tol" && hasValue) {
+            settings.bullet.conjugateGradientTolerance = std::atof(argv[++i]);
+            if (!(settings.bullet.conjugateGradientTolerance >= 0))
+                return false;
+        } else
             return false;
     }
     applyModeDefaults(settings);
@@ -192,11 +237,15 @@ Run relaxWith(const std::string& backend, const MassSpringSystem& start, const S
     options.tolerance = kTolerance;
     options.maxSeconds = settings.cap;
     options.threads = settings.threads;
-    const auto relaxer = makeRelaxer(backend);
+    const std::unique_ptr<Relaxer> relaxer = backend == "bullet"
+                                                 ? std::make_unique<BulletRelaxer>(settings.bullet)
+                                                 : makeRelaxer(backend);
     const auto t0 = std::chrono::steady_clock::now();
+    const std::clock_t cpu0 = std::clock();
     const RelaxResult result = relaxer->relax(system, options);
     Run run;
     run.seconds = bench::secondsSince(t0);
+    run.cpuSeconds = double(std::clock() - cpu0) / CLOCKS_PER_SEC;
     run.backend = backend;
     run.stopReason = result.stopReason;
     run.residual = residual(system);
@@ -206,14 +255,14 @@ Run relaxWith(const std::string& backend, const MassSpringSystem& start, const S
 }
 
 void printRunHeader() {
-    std::printf("%-16s %-5s %8s | %-7s %-11s %9s %10s %9s\n", "net", "mat.", "knots", "backend",
-                "stop", "seconds", "residual", "steps");
+    std::printf("%-16s %-5s %8s | %-7s %-11s %9s %9s %10s %9s\n", "net", "mat.", "knots", "backend",
+                "stop", "seconds", "cpu s", "residual", "steps");
 }
 
 void printRun(const Comparison& c, const Run& run) {
-    std::printf("%-16s %-5s %8zu | %-7s %-11s %9.3f %10.2e %9lld\n", c.net.c_str(),
+    std::printf("%-16s %-5s %8zu | %-7s %-11s %9.3f %9.3f %10.2e %9lld\n", c.net.c_str(),
                 c.material.c_str(), c.knots, run.backend.c_str(), run.stopReason.c_str(),
-                run.seconds, run.residual, run.steps);
+                run.seconds, run.cpuSeconds, run.residual, run.steps);
     std::fflush(stdout);
 }
 
@@ -299,6 +348,10 @@ void printPreamble(const Settings& settings) {
     std::printf(
         "rope: EA 2e5 N, compression ratio 0.01, knot 2 g, 6 g/m, bar 0.1 m; cr=1: the same "
         "with compression ratio 1\n");
+    std::printf("bullet: %d Newton iterations per step, at most %d conjugate-gradient iterations "
+                "per Newton iteration, tolerance %.3g\n",
+                settings.bullet.newtonIterations, settings.bullet.conjugateGradientIterations,
+                settings.bullet.conjugateGradientTolerance);
     std::printf("load average at start: %s\n\n", loadAverage().c_str());
 }
 
@@ -307,10 +360,12 @@ void printPreamble(const Settings& settings) {
 int main(int argc, char** argv) {
     Settings settings;
     if (!parseArguments(argc, argv, settings)) {
-        std::fprintf(stderr,
-                     "usage: %s [--quick] [--sizes 0.2k,2k,20k,200k] [--cap S] "
-                     "[--threads N] [--backends bullet,rk4,fast]\n",
-                     argv[0]);
+        std::fprintf(
+            stderr,
+            "usage: %s [--quick] [--sizes 0.2k,2k,20k,200k] [--cap S] "
+            "[--threads N] [--backends bullet,rk4,fast] [--shapes tube,sheet] [--bullet-cg N] "
+            "[--bullet-cg-tol X] [--bullet-newton N]\n",
+            argv[0]);
         return 2;
     }
     printPreamble(settings);
@@ -318,7 +373,7 @@ int main(int argc, char** argv) {
     std::vector<Comparison> comparisons;
     try {
         for (const NetSize& size : settings.sizes)
-            for (Shape shape : {Shape::tube, Shape::sheet})
+            for (Shape shape : settings.shapes)
                 for (const NamedMaterial& material : materials())
                     comparisons.push_back(compare(shape, size, material, settings));
     } catch (const std::exception& e) {

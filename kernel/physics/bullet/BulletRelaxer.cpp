@@ -63,6 +63,12 @@ constexpr std::int64_t kFullMatrixPause = 8;
 // times the mean load per held knot.
 constexpr double kStageTolerance = 1e-3;
 constexpr double kPreviewLoadFactor = 20;
+// Conjugate-gradient iterations per solve allowed before one has been timed (Bullet's default
+// limit); the time per iteration is measured on steps that make at least kTimedIterations; a step
+// cut short by the time limit still makes kMinStepIterations.
+constexpr double kUntimedIterations = 300;
+constexpr std::int64_t kTimedIterations = 50;
+constexpr int kMinStepIterations = 10;
 
 btVector3 toBullet(const Vec3& v) { return {v.x, v.y, v.z}; }
 Vec3 fromBullet(const btVector3& v) { return {v.x(), v.y(), v.z()}; }
@@ -121,6 +127,7 @@ class NetSpringForce final : public btDeformableMassSpringForce {
     }
 
     void addScaledElasticForceDifferential(btScalar scale, const TVStack& dx, TVStack& df) override {
+        ++products_;
         for (int i = 0; i < m_softBodies.size(); ++i) {
             const btSoftBody* body = m_softBodies[i];
             if (!body->isActive())
@@ -163,22 +170,28 @@ class NetSpringForce final : public btDeformableMassSpringForce {
     /// true: Bullet's force differential unchanged (Newton's exact matrix, indefinite where links
     /// are compressed); false: compressed links' transverse term dropped (positive semidefinite).
     void setFullMatrix(bool on) { fullMatrix_ = on; }
+    /// Products with the force differential so far: one per conjugate-gradient iteration, plus
+    /// one per solve for its start.
+    std::int64_t products() const { return products_; }
 
   private:
     bool fullMatrix_ = false;
+    std::int64_t products_ = 0;
     std::vector<btScalar> stiffness_; ///< N/m per link
     bool damped_;
 };
 
 /// Bullet's deformable solver with the knobs it keeps protected: Newton iterations per step and
-/// the conjugate-gradient iteration limit.
+/// the conjugate-gradient iteration limit and tolerance (btKrylovSolver's m_maxIterations and
+/// m_tolerance, used as Bullet uses them).
 class StaticDeformableSolver final : public btDeformableBodySolver {
   public:
-    void configure(int newtonIterations, int conjugateGradientIterations) {
+    void configure(int newtonIterations, double conjugateGradientTolerance) {
         m_maxNewtonIterations = newtonIterations;
         m_newtonTolerance = 0; // run all of them
-        m_cg.m_maxIterations = conjugateGradientIterations;
+        m_cg.setTolerance(conjugateGradientTolerance);
     }
+    void setConjugateGradientIterations(int iterations) { m_cg.m_maxIterations = iterations; }
 };
 
 /// Everything Bullet needs, torn down in the right order (the soft body leaves the world before
@@ -193,7 +206,15 @@ class BulletScene {
     BulletScene(const BulletScene&) = delete;
     BulletScene& operator=(const BulletScene&) = delete;
 
-    void step(double timeStep) { world_->stepSimulation(timeStep, 0); }
+    /// One backward Euler step whose conjugate-gradient solves stop after at most `iterations`;
+    /// returns its products with the force differential (its conjugate-gradient iterations, plus
+    /// one per solve).
+    std::int64_t step(double timeStep, int iterations) {
+        bodySolver_.setConjugateGradientIterations(iterations);
+        const std::int64_t before = springs_->products();
+        world_->stepSimulation(timeStep, 0);
+        return springs_->products() - before;
+    }
     /// Every link stiffness times scale (stiffness continuation): the force is replaced by one
     /// with the scaled stiffness (the world keeps a pointer to it).
     void setStiffnessScale(double scale);
@@ -249,7 +270,7 @@ void BulletScene::setStiffnessScale(double scale) {
 
 BulletScene::BulletScene(const MassSpringSystem& system, const BulletSettings& settings) {
     constraintSolver_.setDeformableSolver(&bodySolver_);
-    bodySolver_.configure(settings.newtonIterations, settings.conjugateGradientIterations);
+    bodySolver_.configure(settings.newtonIterations, settings.conjugateGradientTolerance);
     world_ = std::make_unique<btDeformableMultiBodyDynamicsWorld>(
         &dispatcher_, &broadphase_, &constraintSolver_, &collisionConfiguration_, &bodySolver_);
     const btVector3 g = toBullet(system.gravity);
@@ -326,6 +347,9 @@ void validate(const BulletSettings& s) {
         fail("newtonIterations", s.newtonIterations, "a count >= 1");
     if (s.conjugateGradientIterations < 1)
         fail("conjugateGradientIterations", s.conjugateGradientIterations, "a count >= 1");
+    if (!std::isfinite(s.conjugateGradientTolerance) || s.conjugateGradientTolerance < 0)
+        fail("conjugateGradientTolerance", s.conjugateGradientTolerance,
+             "a finite number >= 0 (0 = every conjugateGradientIterations)");
     if (!std::isfinite(s.linkDamping) || s.linkDamping < 0)
         fail("linkDamping", s.linkDamping, "a finite number >= 0");
 }
@@ -479,10 +503,26 @@ RelaxResult BulletRelaxer::relax(MassSpringSystem& system, const RelaxOptions& o
     if (stopReason.empty())
         beginStage();
 
+    // Seconds per conjugate-gradient iteration, measured on the last step that made enough of
+    // them to time; 0 = not known yet.
+    double secondsPerIteration = 0;
     while (stopReason.empty()) {
         const bool fullMatrix = acceptedResidual < kFullMatrixBelow && steps >= fullMatrixFrom;
         scene->setFullMatrix(fullMatrix);
-        scene->step(step);
+        // A step's solve may need many conjugate-gradient iterations (thousands on a stiff net);
+        // the time limit is checked between steps, so a step gets at most what fits in the time
+        // left (the last one is cut short rather than overrunning the limit), and until a step
+        // has been timed, Bullet's default.
+        const double before = seconds();
+        const double fit = secondsPerIteration > 0
+                               ? std::max(0.0, options.maxSeconds - before) / secondsPerIteration /
+                                     settings_.newtonIterations // per solve
+                               : kUntimedIterations;
+        const int iterations = int(std::min(double(settings_.conjugateGradientIterations),
+                                            std::max(double(kMinStepIterations), fit)));
+        const std::int64_t made = scene->step(step, iterations);
+        if (made >= kTimedIterations)
+            secondsPerIteration = (seconds() - before) / double(made);
         ++steps;
         if (settings_.kineticDamping)
             scene->stopNodes();

@@ -32,12 +32,32 @@
 //   are nodes of zero mass (inverse mass 0 = pinned, projected out of the solve). The masses also
 //   set Bullet's dynamics, which only changes the path.
 // - Integration and damping. Each Bullet step solves M (v' - v) = dt F(x + dt v') (backward
-//   Euler, one Newton iteration, conjugate gradients preconditioned by the mass matrix). Between
+//   Euler, Newton iterations, conjugate gradients preconditioned by the mass matrix). Between
 //   steps every node is stopped (kinetic damping), so a step is (M / dt^2 + K) dx = F: with a
 //   short step a damped motion, with a long one a Newton step on F = 0. The step grows as the
 //   residual falls (switched evolution relaxation) and a stiff net goes through stiffness
 //   continuation first, as the RK4 backend does. No physical damping is needed; the rest shape
 //   does not depend on any of this.
+// - Solver settings: not Bullet's defaults (BulletSettings; issue 6, measured with
+//   netsculpt-bench-compare on the realistic rope, EA 2e5 N; figures in CPU seconds, README
+//   "Performance"). Near the rest shape a step is a Newton step whose matrix couples stretching
+//   (EA / l) with the shape modes (tension / l, spread over the rows), a condition number of
+//   10^8 and more; conjugate gradients preconditioned by the masses need about 10^4 iterations to
+//   solve it (measured per solve at full stiffness: 10,000-15,000 on a 2,000-knot tube, up to
+//   35,000 on a 20,000-knot one). Bullet's limit of 300 leaves every such step inexact and
+//   the residual hovers at 3e-5 .. 5e-3, never 1e-6. Bullet's stopping test at its tolerance
+//   (machine epsilon) is met only in the soft stages, so a fixed limit is paid in full by every
+//   stiff solve (3,000: the 2k tube converges in 16 s; 10,000: 4 s). Hence a limit of 100,000
+//   and the test at 1e-7: each solve stops when it is accurate enough, after tens to hundreds of
+//   iterations in the soft stages and what the step needs in the stiff ones (2k tube: 3.7 s;
+//   the 20k tube, which never converged before: 142 s). Looser is slower on tubes (1e-6: 6 s),
+//   tighter on slack sheets (1e-8: 76 s instead of 57, 1e-10: 104). Two Newton iterations
+//   per step: Bullet starts a step's Newton iterations from an explicit prediction
+//   (v = v_n + dt M^-1 F(x)), which a long step on a slack net throws far off, and a second
+//   iteration corrects it: the 2k slack sheet with compression ratio 1 converges (57 s; with
+//   one it still hovered at 2.5e-4 after 220 s), tubes take 10-20 % longer. A step is given at
+//   most the iterations that fit in the time left (RelaxOptions::maxSeconds), so a long solve
+//   does not overrun the time limit.
 // - Precision: Bullet is linked in double precision (BT_USE_DOUBLE_PRECISION, the -float64
 //   libraries), so positions go to and from Bullet without rounding.
 //
@@ -64,11 +84,21 @@ struct BulletSettings {
     /// Kinetic damping: all nodes are stopped after every step. false = Bullet's dynamics carry
     /// momentum from step to step (slower to settle; for experiments).
     bool kineticDamping = true;
-    /// Newton iterations per Bullet step, >= 1 (Bullet's default: 1).
-    int newtonIterations = 1;
-    /// Conjugate-gradient iterations per Newton iteration, >= 1 (Bullet's default: 300). Stiff
-    /// nets may need more (each iteration is a pass over all links).
-    int conjugateGradientIterations = 300;
+    /// Newton iterations per Bullet step, >= 1 (Bullet's default: 1; 2 lets slack nets converge,
+    /// see the file comment).
+    int newtonIterations = 2;
+    /// Conjugate-gradient iterations per Newton iteration at most, >= 1 (Bullet's default: 300;
+    /// each iteration is a pass over all links). Fewer when the solve meets
+    /// conjugateGradientTolerance first, and when the time left would not allow them (the first
+    /// step, before one has been timed, makes at most 300). Stiff nets need about 10^4 per solve
+    /// near the rest shape (see the file comment).
+    int conjugateGradientIterations = 100000;
+    /// Bullet's stopping test for its conjugate-gradient solve of a step's linear system A x = b
+    /// (btConjugateGradient, preconditioned by the mass matrix M): stop when
+    /// r·M⁻¹r < tolerance · min(1, b·M⁻¹b), r the solve's residual; dimensionless. >= 0;
+    /// 0 = never stop before conjugateGradientIterations. Bullet's default is machine epsilon
+    /// (2.2e-16), which a stiff net never reaches.
+    double conjugateGradientTolerance = 1e-7;
     /// Damping along each link, N s/m (Bullet's mass-spring damping), >= 0; 0 = none.
     double linkDamping = 0;
 };
@@ -77,9 +107,11 @@ struct BulletSettings {
 /// model differs from Eq. 3). name() and RelaxResult::backend are "bullet".
 ///
 /// relax() checks the residual after every Bullet step (one pass of Eq. 3 by the project's
-/// force code, and one of Bullet's own model when the two differ; a Bullet step costs up to
-/// conjugateGradientIterations such passes). It honours RelaxOptions::tolerance (at the
-/// material's stiffness), maxSeconds and cancel (checked between steps, so one step may run
+/// force code, and one of Bullet's own model when the two differ; a Bullet step costs
+/// newtonIterations solves of up to conjugateGradientIterations such passes each). It honours
+/// RelaxOptions::tolerance (at the material's stiffness), maxSeconds (a step gets at most the
+/// conjugate-gradient iterations that fit in the time left, at the rate the last steps made them;
+/// the limit is checked between steps), cancel (checked between steps, so one step may run
 /// over), maxSteps (Bullet steps), progress, continuation and continuationFactor. The first stage
 /// is always the softest the RK4 backend allows (EA = 20 times the mean load per held knot), not
 /// previewStiffnessScale: Newton steps need small strains more than a close start. threads is
