@@ -56,6 +56,8 @@ class App {
     Interaction& interaction() { return *interaction_; }
     Camera& camera() { return camera_; }
     std::shared_ptr<const LiveState> liveState() const { return liveState_; }
+    /// The stiffness scale of the shape shown: < 1 while it is a preview.
+    double previewScaleShown() const;
     bool liveEnabled() const { return liveEnabled_; }
     void setLiveEnabled(bool on);
     /// Refine automatically when the preview has settled (on by default).
@@ -90,6 +92,7 @@ class App {
     bool noticeIsError() const { return noticeIsError_; }
 
   private:
+    nlohmann::json previewReport() const;
     void initWindow();
     void initImGui();
     void sampleFontAtlasUnfiltered();

@@ -193,13 +193,29 @@ void App::setColourBy(ColourBy c) {
     positionsDirty_ = true;
 }
 
+double App::previewScaleShown() const {
+    const bool shown = liveState_ && liveState_->generation == interaction_->version() &&
+                       liveState_->positions.size() == doc_->compiled().system.knotCount();
+    return shown ? liveState_->stiffnessScale : 1.0;
+}
+
+/// The report of a preview shape with the preview's stiffness: the forces that hold that shape
+/// (at the material's stiffness its stretch would read as forces about 1/scale too large).
+nlohmann::json App::previewReport() const {
+    CompiledSculpture soft = doc_->compiled();
+    const double scale = previewScaleShown();
+    for (double& k : soft.system.kTension) k *= scale;
+    for (double& k : soft.system.kCompression) k *= scale;
+    return buildReport(doc_->sculpture(), soft, relaxStatus(*doc_));
+}
+
 const nlohmann::json* App::report() {
     const auto now = std::chrono::steady_clock::now();
     if (reportDirty_ && now - reportTime_ > std::chrono::milliseconds(500)) {
         reportDirty_ = false;
         reportTime_ = now;
         try {
-            report_ = buildReport(*doc_);
+            report_ = previewScaleShown() < 1 ? previewReport() : buildReport(*doc_);
             reportValid_ = true;
         } catch (const std::exception& e) {
             reportValid_ = false;

@@ -182,8 +182,11 @@ void Panels::drawReport(App& app) {
         const bool relaxed = live && live->converged && live->stiffnessScale == 1 &&
                              live->generation == app.interaction().version();
         ImGui::TextDisabled("%zu slack bars", r.value("slack_bars", std::size_t{0}));
+        const double preview = app.previewScaleShown();
         if (relaxed) ImGui::TextDisabled("relaxed shape");
-        else ImGui::TextColored(ImVec4(0.95f, 0.75f, 0.3f, 1), "preview shape: forces are not final (Refine)");
+        else if (preview < 1)
+            ImGui::TextColored(ImVec4(0.95f, 0.75f, 0.3f, 1), "preview forces, x%.2g stiffness", preview);
+        else ImGui::TextColored(ImVec4(0.95f, 0.75f, 0.3f, 1), "not relaxed: forces are not final (Refine)");
     } catch (const nlohmann::json::exception& e) {
         ImGui::TextDisabled("report: %s", e.what());
     }
