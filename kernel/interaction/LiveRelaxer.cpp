@@ -21,14 +21,12 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-MassSpringSystem scaledCopy(const MassSpringSystem& system, double scale) {
-    MassSpringSystem soft = system;
-    for (double& k : soft.kTension) k *= scale;
-    for (double& k : soft.kCompression) k *= scale;
-    return soft;
-}
-
 } // namespace
+
+void scaleStiffness(MassSpringSystem& system, double scale) {
+    for (double& k : system.kTension) k *= scale;
+    for (double& k : system.kCompression) k *= scale;
+}
 
 double previewScale(const MassSpringSystem& system, double requested) {
     double minAxialStiffness = std::numeric_limits<double>::infinity(); // EA, N
@@ -172,7 +170,8 @@ void LiveRelaxer::runJob(Job& job) {
             // own (its schedule is a way to such a stiffness); the fast path's continuation is
             // how it starts from a cold shape, and a warm one skips it.
             const double scale = previewScale(job.system, options_.previewStiffnessScale);
-            MassSpringSystem soft = scaledCopy(job.system, scale);
+            MassSpringSystem soft = job.system;
+            scaleStiffness(soft, scale);
             o.tolerance = options_.previewTolerance;
             o.continuation = relaxer_->name() == "fast";
             o.maxSeconds = options_.maxSeconds;

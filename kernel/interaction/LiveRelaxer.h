@@ -118,5 +118,7 @@ class LiveRelaxer {
 
 /// The soft scale the preview uses for `system` (previewStiffnessScale raised to the strain floor).
 double previewScale(const MassSpringSystem& system, double requested);
+/// Every bar's stiffness (tension and compression) times `scale`: the preview's soft copy.
+void scaleStiffness(MassSpringSystem& system, double scale);
 
 } // namespace netsculpt

@@ -203,9 +203,7 @@ double App::previewScaleShown() const {
 /// (at the material's stiffness its stretch would read as forces about 1/scale too large).
 nlohmann::json App::previewReport() const {
     CompiledSculpture soft = doc_->compiled();
-    const double scale = previewScaleShown();
-    for (double& k : soft.system.kTension) k *= scale;
-    for (double& k : soft.system.kCompression) k *= scale;
+    scaleStiffness(soft.system, previewScaleShown());
     return buildReport(doc_->sculpture(), soft, relaxStatus(*doc_));
 }
 
