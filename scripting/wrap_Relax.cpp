@@ -50,8 +50,9 @@ DocumentRelaxOptions relaxArgs(const Call& call) {
     return options;
 }
 
-void pushRelaxResult(lua_State* L, const RelaxResult& r) {
-    lua_createtable(L, 0, 7);
+/// The result table; docIndex: the document's stack index (unsettled_at.piece is its handle).
+void pushRelaxResult(lua_State* L, const RelaxResult& r, int docIndex) {
+    lua_createtable(L, 0, 8);
     setBoolean(L, "converged", r.converged);
     setNumber(L, "residual", r.residual);
     setInteger(L, "steps", r.steps);
@@ -59,18 +60,26 @@ void pushRelaxResult(lua_State* L, const RelaxResult& r) {
     setNumber(L, "seconds", r.seconds);
     setString(L, "backend", r.backend);
     setString(L, "stop_reason", r.stopReason);
+    if (r.unsettledAt) {
+        lua_createtable(L, 0, 3);
+        pushPiece(L, docIndex, r.unsettledAt->piece);
+        lua_setfield(L, -2, "piece");
+        setInteger(L, "row", r.unsettledAt->row);
+        setInteger(L, "column", r.unsettledAt->column);
+        lua_setfield(L, -2, "unsettled_at");
+    }
 }
 
 /// doc:relax{tolerance, max_seconds, max_steps, backend, wind = {direction, pressure},
 /// continuation, threads} -> {converged, residual, steps, evaluations, seconds, backend,
-/// stop_reason}.
+/// stop_reason, unsettled_at = {piece, row, column} when not converged}.
 int w_relax(Call& call) {
     Document& doc = checkDocument(call);
     const DocumentRelaxOptions options = relaxArgs(call);
     const RelaxResult result = doc.relax(options);
     if (const auto& finished = context(call.L).relaxFinished)
         finished(result);
-    pushRelaxResult(call.L, result);
+    pushRelaxResult(call.L, result, 1);
     return 1;
 }
 
@@ -80,7 +89,7 @@ int w_last_relax(Call& call) {
     if (r.stopReason.empty() && r.steps == 0 && !r.converged)
         lua_pushnil(call.L);
     else
-        pushRelaxResult(call.L, r);
+        pushRelaxResult(call.L, r, 1);
     return 1;
 }
 

@@ -4,6 +4,7 @@
 #include "commands/Snapshot.h"
 #include "model/Error.h"
 #include "physics/Backends.h"
+#include "physics/Forces.h"
 
 #include <algorithm>
 #include <fstream>
@@ -362,6 +363,10 @@ RelaxResult Document::relax(const DocumentRelaxOptions& options) {
     if (!st.relaxer || relaxerKey(options.backend) != st.relaxer->name()) st.relaxer = makeRelaxer(options.backend);
     RelaxResult result = st.relaxer->relax(st.compiled.system, options.solver);
     result.tolerance = options.solver.tolerance;
+    const MassSpringSystem& system = st.compiled.system;
+    if (const std::int64_t worst = result.converged ? -1 : knotWithLargestResidual(system, options.solver.wind);
+        worst >= 0)
+        result.unsettledAt = system.refs[system.refStart[static_cast<std::size_t>(worst)]];
     st.lastRelax = result;
     st.relaxed = result.converged;
     st.warm = true;

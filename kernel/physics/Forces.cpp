@@ -479,6 +479,24 @@ double residual(const MassSpringSystem& system, const std::optional<Wind>& wind)
     return worst;
 }
 
+std::int64_t knotWithLargestResidual(const MassSpringSystem& system,
+                                     const std::optional<Wind>& wind) {
+    const std::vector<double> residuals = knotResiduals(system, wind);
+    std::int64_t worst = -1;
+    double largest = -1;
+    for (std::size_t j = 0; j < residuals.size(); ++j) {
+        if (system.fixed[j])
+            continue;
+        const double r = std::isfinite(residuals[j]) ? residuals[j]
+                                                     : std::numeric_limits<double>::infinity();
+        if (r > largest) {
+            largest = r;
+            worst = static_cast<std::int64_t>(j);
+        }
+    }
+    return worst;
+}
+
 std::vector<double> barTensions(const MassSpringSystem& system) {
     ForceField field(system);
     std::vector<double> tension(system.barCount());

@@ -148,6 +148,11 @@ std::vector<double> knotResiduals(const MassSpringSystem& system,
 /// (0 when no knot is free; NaN never, +inf if a force is not finite).
 double residual(const MassSpringSystem& system, const std::optional<Wind>& wind = {});
 
+/// The free knot with the largest |F_j| / (m_j |g|) at stiffness scale 1 (the first one on a
+/// tie; a non-finite residual counts as the largest), or -1 when no knot is free.
+std::int64_t knotWithLargestResidual(const MassSpringSystem& system,
+                                     const std::optional<Wind>& wind = {});
+
 /// Per bar: k (l - l_eq) in N at stiffness scale 1; > 0 tension, < 0 compression.
 std::vector<double> barTensions(const MassSpringSystem& system);
 

@@ -70,6 +70,10 @@ struct RelaxResult {
     /// "converged", "time limit", "step limit", "cancelled" or "diverged" (the step size
     /// collapsed; the positions are the last good state, never NaN).
     std::string stopReason;
+    /// When the run did not converge, where the net has not settled: the (piece, row, column) of
+    /// the free knot with the largest residual at the positions returned (its first reference
+    /// when pieces share it). Filled by Document::relax() for every backend.
+    std::optional<KnotRef> unsettledAt;
 };
 
 /// Throws UserError naming the first invalid option, its value and what is allowed.

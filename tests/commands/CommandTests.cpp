@@ -4,6 +4,8 @@
 
 #include "CommandTestSupport.h"
 
+#include "physics/Forces.h"
+
 #include <algorithm>
 #include <functional>
 #include <map>
@@ -179,6 +181,32 @@ TEST_CASE("positions relaxed elsewhere are adopted as the warm start of the next
 
     doc.adoptPositions(doc.compiled().system.position, true);
     CHECK(doc.isRelaxed());
+}
+
+TEST_CASE("a relaxation that stops early says where the net has not settled") {
+    Document doc = fixtureDocument();
+    DocumentRelaxOptions options;
+    options.backend = "rk4";
+    options.solver.maxSteps = 3; // far from the equilibrium: the Eq. 2 start barely moved
+    const RelaxResult stopped = doc.relax(options);
+    REQUIRE_FALSE(stopped.converged);
+    REQUIRE(stopped.unsettledAt.has_value());
+    // the knot named is a free one whose residual is the run's residual (the largest)
+    const CompiledSculpture& compiled = doc.compiled();
+    const std::size_t knot = compiled.knotOf(stopped.unsettledAt->piece, stopped.unsettledAt->row,
+                                             stopped.unsettledAt->column);
+    CHECK_FALSE(compiled.system.fixed[knot]);
+    const std::vector<double> residuals = knotResiduals(compiled.system);
+    CHECK(residuals[knot] == stopped.residual);
+    CHECK(residuals[knot] == *std::max_element(residuals.begin(), residuals.end()));
+    CHECK(doc.lastRelax().unsettledAt == stopped.unsettledAt);
+
+    options.solver.maxSteps = -1;
+    options.solver.maxSeconds = 30;
+    options.backend = "fast";
+    const RelaxResult converged = doc.relax(options);
+    REQUIRE(converged.converged);
+    CHECK_FALSE(converged.unsettledAt.has_value());
 }
 
 TEST_CASE("merged commands are one undo step and equal doing both") {

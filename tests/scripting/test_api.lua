@@ -147,8 +147,15 @@ T.case("relax, export, report, save and open", function()
   local ring = doc:add_rail{points = T.circle(2, 5, 48), closed = true}
   local p = doc:attach_to_rail{rail = ring, columns = 24, rows = 4, bar = 0.4}
   doc:set_material{piece = p, stiffness = 100}
+  local early = doc:relax{max_steps = 2, backend = "rk4"}
+  T.eq(early.converged, false); T.eq(early.stop_reason, "step limit")
+  -- where the net has not settled: a knot of the piece below the rail (row 0 is held)
+  T.eq(early.unsettled_at.piece, p)
+  T.check(early.unsettled_at.row >= 1 and early.unsettled_at.row <= 3)
+  T.check(early.unsettled_at.column >= 0 and early.unsettled_at.column < 24)
   local r = doc:relax{tolerance = 1e-3, max_seconds = 10, backend = "rk4"}
   T.eq(r.converged, true); T.eq(r.stop_reason, "converged"); T.eq(r.backend, "rk4")
+  T.eq(r.unsettled_at, nil)
   T.check(r.steps > 0 and r.evaluations >= r.steps and r.residual < 1e-3)
   T.eq(doc:last_relax().steps, r.steps)
   local knots = doc:knots(p)

@@ -1,5 +1,7 @@
 #include "Progress.h"
 
+#include "model/Ids.h"
+
 #include <cstdio>
 #include <unistd.h>
 
@@ -56,7 +58,12 @@ std::string describeRelaxResult(const RelaxResult& r) {
                   r.converged ? "" : " (", r.converged ? "" : r.stopReason.c_str(),
                   r.converged ? "" : ")", static_cast<long long>(r.steps),
                   seconds(r.seconds).c_str(), r.residual, r.backend.c_str());
-    return text;
+    std::string described = text;
+    if (r.unsettledAt)
+        described += ", largest at " + toString(r.unsettledAt->piece) + " row " +
+                     std::to_string(r.unsettledAt->row) + " column " +
+                     std::to_string(r.unsettledAt->column);
+    return described;
 }
 
 } // namespace netsculpt::cli
