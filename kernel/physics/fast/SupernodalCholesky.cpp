@@ -16,6 +16,7 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <tuple>
 
 namespace netsculpt {
 
@@ -27,6 +28,8 @@ using VectorMap = Eigen::Map<Eigen::VectorXd>;
 using StridedRef = Eigen::Ref<Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
 
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+// Marks a fill entry whose input block lands transposed in the factor.
+constexpr std::uint32_t kTransposed = std::uint32_t(1) << 31;
 // A subtree of the supernodal elimination tree with fewer flops than this share of the whole
 // factorization is one task of the schedule (tiny supernodes are not worth a hand-over).
 constexpr double kTaskShare = 1.0 / 64;
@@ -204,55 +207,52 @@ void SupernodalCholesky::analyse(std::size_t nodes,
             });
     }
 
-    // Where each input value goes: (row, column) in pivot order, lower triangle.
-    std::vector<std::int64_t> inverse(dimension_);
-    for (std::size_t k = 0; k < dimension_; ++k)
-        inverse[static_cast<std::size_t>(perm_[k])] = static_cast<std::int64_t>(k);
-    const std::size_t valueCount = 9 * (nodes + pairs_);
-    std::vector<std::uint32_t> targetOf(valueCount, kNone);
-    std::vector<std::uint32_t> offsetOf(valueCount, 0);
-    auto place = [&](std::size_t v, std::int64_t row, std::int64_t col) {
-        if (row < col)
-            std::swap(row, col);
+    // Where each input block goes, placed block by block (a node's three unknowns are
+    // consecutive pivots, columns of one supernode and consecutive rows of every supernode that
+    // holds them): the offset in its target supernode's dense block of the block's first entry,
+    // and whether it lands transposed (its node of rows is pivoted before its node of columns).
+    std::vector<std::int64_t> nodePivot(nodes);
+    for (std::size_t k = 0; k < nodes; ++k)
+        nodePivot[static_cast<std::size_t>(perm_[3 * k] / 3)] = static_cast<std::int64_t>(k);
+    const std::size_t blockCount = nodes + pairs_;
+    std::vector<std::uint32_t> blockTarget(blockCount);
+    std::vector<std::uint32_t> blockBase(blockCount);
+    auto base = [&](std::int64_t rowPivot, std::int64_t colPivot) {
+        const std::int64_t row = 3 * rowPivot, col = 3 * colPivot;
         const std::uint32_t s = columnSuper_[static_cast<std::size_t>(col)];
         const auto* begin = rows_.data() + rowStart_[s];
         const auto* end = rows_.data() + rowStart_[s + 1];
         const auto* at = std::lower_bound(begin, end, row);
-        assert(at != end && *at == row);
+        assert(at + 2 < end && *at == row);
         const std::int64_t offset = (col - superStart_[s]) * rowCount(s) + (at - begin);
-        if (offset > std::numeric_limits<std::uint32_t>::max())
+        if (offset + 2 * rowCount(s) + 2 > std::numeric_limits<std::uint32_t>::max())
             throw std::runtime_error("sparse Cholesky analysis: a supernode is too large");
-        targetOf[v] = s;
-        offsetOf[v] = static_cast<std::uint32_t>(offset);
+        return std::pair{s, static_cast<std::uint32_t>(offset)};
     };
-    for (std::size_t node = 0; node < nodes; ++node)
-        for (int a = 0; a < 3; ++a)
-            for (int b = 0; b < 3; ++b) {
-                const std::int64_t row = inverse[3 * node + a], col = inverse[3 * node + b];
-                if (row >= col) // the other half of a symmetric diagonal block is the same value
-                    place(9 * node + 3 * a + b, row, col);
-            }
-    for (std::size_t p = 0; p < pairs_; ++p)
-        for (int a = 0; a < 3; ++a)
-            for (int b = 0; b < 3; ++b)
-                place(9 * (nodes + p) + 3 * a + b, inverse[3 * pairs[p][0] + a],
-                      inverse[3 * pairs[p][1] + b]);
+    for (std::size_t node = 0; node < nodes; ++node) {
+        const std::int64_t k = nodePivot[node];
+        std::tie(blockTarget[node], blockBase[node]) = base(k, k);
+    }
+    for (std::size_t p = 0; p < pairs_; ++p) {
+        const std::int64_t i = nodePivot[pairs[p][0]], j = nodePivot[pairs[p][1]];
+        std::tie(blockTarget[nodes + p], blockBase[nodes + p]) = i > j ? base(i, j) : base(j, i);
+        if (i < j)
+            blockTarget[nodes + p] |= kTransposed;
+    }
     fillStart_.assign(supers + 1, 0);
-    for (std::uint32_t s : targetOf)
-        if (s != kNone)
-            ++fillStart_[s + 1];
+    for (std::uint32_t target : blockTarget)
+        ++fillStart_[(target & ~kTransposed) + 1];
     for (std::size_t s = 0; s < supers; ++s)
         fillStart_[s + 1] += fillStart_[s];
-    fillSource_.resize(static_cast<std::size_t>(fillStart_[supers]));
-    fillOffset_.resize(fillSource_.size());
+    fillBlock_.resize(blockCount);
+    fillBase_.resize(blockCount);
     {
         std::vector<std::int64_t> next(fillStart_.begin(), fillStart_.end() - 1);
-        for (std::size_t v = 0; v < valueCount; ++v) {
-            if (targetOf[v] == kNone)
-                continue;
-            const auto k = static_cast<std::size_t>(next[targetOf[v]]++);
-            fillSource_[k] = static_cast<std::uint32_t>(v);
-            fillOffset_[k] = offsetOf[v];
+        for (std::size_t v = 0; v < blockCount; ++v) {
+            const std::uint32_t target = blockTarget[v] & ~kTransposed;
+            const auto k = static_cast<std::size_t>(next[target]++);
+            fillBlock_[k] = static_cast<std::uint32_t>(v) | (blockTarget[v] & kTransposed);
+            fillBase_[k] = blockBase[v];
         }
     }
     diagonalOffset_.resize(dimension_);
@@ -324,8 +324,27 @@ bool SupernodalCholesky::factorSupernode(std::size_t s, std::span<const double> 
     double* block = values_.data() + valueStart_[s];
     MatrixMap l(block, rowCount, cols);
     l.setZero();
-    for (std::int64_t k = fillStart_[s]; k < fillStart_[s + 1]; ++k)
-        block[fillOffset_[static_cast<std::size_t>(k)]] = values[fillSource_[static_cast<std::size_t>(k)]];
+    // The input blocks: a diagonal one's lower triangle, a pair's nine entries, each entry (a, b)
+    // at row a, column b of the block (b, a when transposed).
+    for (std::int64_t k = fillStart_[s]; k < fillStart_[s + 1]; ++k) {
+        const std::uint32_t entry = fillBlock_[static_cast<std::size_t>(k)];
+        const std::size_t source = entry & ~kTransposed;
+        const double* v = values.data() + 9 * source;
+        double* to = block + fillBase_[static_cast<std::size_t>(k)];
+        if (source < nodes_) {
+            for (int b = 0; b < 3; ++b)
+                for (int a = b; a < 3; ++a)
+                    to[b * rowCount + a] = v[3 * a + b];
+        } else if (entry & kTransposed) {
+            for (int a = 0; a < 3; ++a)
+                for (int b = 0; b < 3; ++b)
+                    to[a * rowCount + b] = v[3 * a + b];
+        } else {
+            for (int a = 0; a < 3; ++a)
+                for (int b = 0; b < 3; ++b)
+                    to[b * rowCount + a] = v[3 * a + b];
+        }
+    }
     for (std::int64_t k = 0; k < cols; ++k)
         block[diagonalOffset_[static_cast<std::size_t>(superStart_[s] + k)]] += shift;
 

@@ -84,10 +84,12 @@ class SupernodalCholesky {
     std::vector<std::uint32_t> columnSuper_;  ///< column -> supernode
     std::vector<std::int64_t> updateStart_;   ///< updates_[updateStart_[s] .. updateStart_[s+1]) into s
     std::vector<Update> updates_;
-    // Filling a supernode from the input: value index -> offset in its block.
+    // Filling a supernode from the input, block by block: supernode s takes the input blocks
+    // fillBlock_[fillStart_[s] .. fillStart_[s+1]) (kTransposed set: it lands transposed), the
+    // first entry of each at fillBase_[k] in its dense block.
     std::vector<std::int64_t> fillStart_;
-    std::vector<std::uint32_t> fillSource_;
-    std::vector<std::uint32_t> fillOffset_;
+    std::vector<std::uint32_t> fillBlock_;
+    std::vector<std::uint32_t> fillBase_;
     std::vector<std::uint32_t> diagonalOffset_; ///< per column: its diagonal entry in its block
 
     // Schedule: tasks in a topological order; a task is one subtree (small ones, run as a whole)
