@@ -147,7 +147,13 @@ struct NewtonAnalysis {
                 barPair[b] = at->second;
             }
         }
-        cholesky.analyse(freeKnots.size(), pairs);
+        // The free knots' positions (the start's) guide the ordering.
+        std::vector<std::array<double, 3>> coordinates(freeKnots.size());
+        for (std::size_t f = 0; f < freeKnots.size(); ++f) {
+            const Vec3& p = system.position[freeKnots[f]];
+            coordinates[f] = {p.x, p.y, p.z};
+        }
+        cholesky.analyse(freeKnots.size(), pairs, coordinates);
     }
 };
 

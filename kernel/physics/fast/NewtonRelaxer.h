@@ -37,8 +37,10 @@
 // - Slack bars: each iteration first tries the exact Hessian (the negative geometric stiffness
 //   of compressed bars included), which converges quadratically near a stable equilibrium with
 //   slack parts, and uses the projected one when that is not positive definite.
-// - Linear algebra: SupernodalCholesky (CHOLMOD's METIS ordering and symbolic analysis, done
-//   once per topology and kept by the relaxer between calls; own numeric factorization).
+// - Linear algebra: SupernodalCholesky (a geometric nested-dissection ordering of the free
+//   knots at their positions when the analysis is made, METIS's when those do not separate the
+//   net well; CHOLMOD's symbolic analysis; done once per topology and kept by the relaxer
+//   between calls; own numeric factorization).
 // - Wind is a position-dependent load without a potential: it enters the force (and so each
 //   Newton step) at the current positions, a fixed point iteration around Newton; with wind the
 //   line search accepts on the residual instead of the energy.
@@ -49,7 +51,11 @@
 //
 // Determinism: every pass that threads share writes per-bar or per-knot results and every sum
 // runs in a fixed order on one thread, and the factorization is deterministic by construction,
-// so a run gives the same bits whatever the number of threads and on every rerun.
+// so a run gives the same bits whatever the number of threads and on every rerun. The ordering
+// depends on the knots' positions when the analysis was made, so a run that reuses the analysis
+// of an earlier call (same topology, other positions) may differ from a fresh relaxer's in the
+// last bits (both converged to the tolerance); a fresh relaxer and a rerun of the same sequence
+// of calls give the same bits.
 //
 // Options: tolerance, maxSeconds, maxSteps (a step = one Newton iteration, i.e. one
 // factorization and solve), threads, cancel, progress, progressInterval, continuation (false:

@@ -1,6 +1,7 @@
 #include "physics/fast/SupernodalCholesky.h"
 
 #include "physics/ThreadPool.h"
+#include "physics/fast/GeometricDissection.h"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
@@ -70,33 +71,57 @@ class CholmodCommon {
 } // namespace
 
 void SupernodalCholesky::analyse(std::size_t nodes,
-                                 std::span<const std::array<std::uint32_t, 2>> pairs) {
+                                 std::span<const std::array<std::uint32_t, 2>> pairs,
+                                 std::span<const std::array<double, 3>> coordinates) {
     analysed_ = false;
     nodes_ = nodes;
     pairs_ = pairs.size();
     dimension_ = 3 * nodes;
 
-    std::vector<std::vector<std::uint32_t>> neighbours(nodes);
+    // The node graph, both directions, each list sorted.
+    std::vector<std::int64_t> adjacencyStart(nodes + 1, 0);
     for (const auto& [i, j] : pairs) {
         assert(i < nodes && j < nodes && i != j);
-        neighbours[i].push_back(j);
-        neighbours[j].push_back(i);
+        ++adjacencyStart[i + 1];
+        ++adjacencyStart[j + 1];
     }
-    for (auto& list : neighbours)
-        std::sort(list.begin(), list.end());
+    for (std::size_t k = 0; k < nodes; ++k)
+        adjacencyStart[k + 1] += adjacencyStart[k];
+    std::vector<std::uint32_t> adjacency(static_cast<std::size_t>(adjacencyStart[nodes]));
+    {
+        std::vector<std::int64_t> next(adjacencyStart.begin(), adjacencyStart.end() - 1);
+        for (const auto& [i, j] : pairs) {
+            adjacency[static_cast<std::size_t>(next[i]++)] = j;
+            adjacency[static_cast<std::size_t>(next[j]++)] = i;
+        }
+    }
+    for (std::size_t k = 0; k < nodes; ++k)
+        std::sort(adjacency.begin() + adjacencyStart[k], adjacency.begin() + adjacencyStart[k + 1]);
 
-    // The node pattern (upper triangle), ordered and analysed by CHOLMOD: nested dissection
-    // (METIS) for large graphs, AMD for small ones (as good there, and METIS's start-up would
-    // dominate), postordered, supernodal. The scalar structure is that of the nodes with every
-    // node expanded to its three coordinates.
+    // The node pattern (upper triangle), ordered and analysed by CHOLMOD: nested dissection for
+    // large graphs (geometric when positions are given and separate the graph well, else
+    // METIS), AMD for small ones (as good there, and METIS's start-up would dominate),
+    // postordered, supernodal. The scalar structure is that of the nodes with every node
+    // expanded to its three coordinates.
     std::vector<std::int64_t> start(nodes + 1, 0), index;
     index.reserve(nodes + pairs.size());
     for (std::size_t j = 0; j < nodes; ++j) {
-        for (std::uint32_t i : neighbours[j])
-            if (i < j)
-                index.push_back(i);
+        for (std::int64_t e = adjacencyStart[j]; e < adjacencyStart[j + 1]; ++e)
+            if (adjacency[static_cast<std::size_t>(e)] < j)
+                index.push_back(adjacency[static_cast<std::size_t>(e)]);
         index.push_back(static_cast<std::int64_t>(j));
         start[j + 1] = static_cast<std::int64_t>(index.size());
+    }
+    std::vector<std::int64_t> given;
+    ordering_ = nodes > kMetisNodes ? Ordering::Metis : Ordering::Amd;
+    if (nodes > kMetisNodes && !coordinates.empty()) {
+        assert(coordinates.size() == nodes);
+        const std::vector<std::uint32_t> order =
+            geometricNestedDissection(GeometricGraph{adjacencyStart, adjacency, coordinates});
+        if (!order.empty()) {
+            given.assign(order.begin(), order.end());
+            ordering_ = Ordering::Geometric;
+        }
     }
     CholmodCommon common;
     cholmod_common* c = common.get();
@@ -112,7 +137,9 @@ void SupernodalCholesky::analyse(std::size_t nodes,
     pattern.sorted = 1;
     pattern.packed = 1;
     c->nmethods = 1;
-    c->method[0].ordering = nodes > kMetisNodes ? CHOLMOD_METIS : CHOLMOD_AMD;
+    c->method[0].ordering = ordering_ == Ordering::Geometric ? CHOLMOD_GIVEN
+                            : ordering_ == Ordering::Metis   ? CHOLMOD_METIS
+                                                             : CHOLMOD_AMD;
     c->postorder = 1;
     c->supernodal = CHOLMOD_SUPERNODAL;
     for (int k = 0; k < 3; ++k) {
@@ -121,7 +148,8 @@ void SupernodalCholesky::analyse(std::size_t nodes,
     }
     cholmod_factor* factor = nullptr;
     if (nodes > 0) {
-        factor = cholmod_l_analyze(&pattern, c);
+        factor = given.empty() ? cholmod_l_analyze(&pattern, c)
+                               : cholmod_l_analyze_p(&pattern, given.data(), nullptr, 0, c);
         if (!factor)
             cholmodFailed("ordering and supernodal symbolic factorization", c);
         if (!factor->is_super)
