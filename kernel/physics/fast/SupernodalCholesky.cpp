@@ -340,7 +340,8 @@ void SupernodalCholesky::analyse(std::size_t nodes,
         }
     }
 
-    values_.assign(static_cast<std::size_t>(valueStart_[supers]));
+    // Every block is zeroed and filled by its factorization before anything reads it.
+    values_.allocate(static_cast<std::size_t>(valueStart_[supers]));
     workers_.clear();
     analysed_ = true;
 }
