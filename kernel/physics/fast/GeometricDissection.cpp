@@ -4,6 +4,7 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace netsculpt {
 
@@ -39,6 +40,7 @@ class Dissector {
     std::vector<std::uint32_t> mark_;    ///< per node: the stamp of the half it was last put in
     std::vector<std::uint8_t> boundary_; ///< per node: has a neighbour in the other half (last split)
     std::vector<std::uint32_t> buffer_;
+    std::vector<std::pair<double, std::uint32_t>> keys_; ///< scratch of split()
     std::uint32_t stamp_ = 0;
     std::size_t topSeparator_ = 0;
     bool top_ = true;
@@ -47,16 +49,15 @@ class Dissector {
 /// Orders order_[begin, end) by coordinate `axis` (ties by node number) around its median, marks
 /// the two halves and their boundary nodes, and returns the smaller boundary.
 Dissector::Split Dissector::split(std::size_t begin, std::size_t end, int axis) {
-    const auto& xyz = graph_.coordinates;
+    // The selection runs on a contiguous copy of the keys (the positions are scattered).
     const std::size_t middle = begin + (end - begin) / 2;
-    std::nth_element(order_.begin() + static_cast<std::ptrdiff_t>(begin),
-                     order_.begin() + static_cast<std::ptrdiff_t>(middle),
-                     order_.begin() + static_cast<std::ptrdiff_t>(end),
-                     [&](std::uint32_t a, std::uint32_t b) {
-                         const double ka = xyz[a][static_cast<std::size_t>(axis)];
-                         const double kb = xyz[b][static_cast<std::size_t>(axis)];
-                         return ka < kb || (ka == kb && a < b);
-                     });
+    keys_.resize(end - begin);
+    for (std::size_t k = begin; k < end; ++k)
+        keys_[k - begin] = {graph_.coordinates[order_[k]][static_cast<std::size_t>(axis)], order_[k]};
+    std::nth_element(keys_.begin(), keys_.begin() + static_cast<std::ptrdiff_t>(middle - begin),
+                     keys_.end()); // by coordinate, ties by node number
+    for (std::size_t k = begin; k < end; ++k)
+        order_[k] = keys_[k - begin].second;
     const std::uint32_t lower = ++stamp_, upper = ++stamp_;
     for (std::size_t k = begin; k < end; ++k)
         mark_[order_[k]] = k < middle ? lower : upper;
