@@ -90,10 +90,27 @@ constexpr double kSmallStep = 0.2;
 // After the exact Hessian was found indefinite, the projected one is used for this many
 // iterations before the exact one is tried again.
 constexpr int kExactPause = 3;
+// The geometric ordering (SupernodalCholesky) is replaced by METIS's after this many
+// factorizations with it on one topology: METIS's analysis costs 25-50 of its factorizations'
+// extra flops (20k and 100k knots), so a run (or a sequence of warm starts) that goes on longer
+// than that pays for it.
+constexpr std::int64_t kGeometricFactorizations = 40;
 // Automatic thread count: at most one thread per this many bars.
 constexpr std::size_t kAutoBarsPerThread = 4096;
 
 using Clock = std::chrono::steady_clock;
+
+const char* orderingName(SupernodalCholesky::Ordering ordering) {
+    switch (ordering) {
+    case SupernodalCholesky::Ordering::Amd:
+        return "AMD";
+    case SupernodalCholesky::Ordering::Metis:
+        return "METIS";
+    case SupernodalCholesky::Ordering::Geometric:
+        return "geometric";
+    }
+    return "";
+}
 
 double secondsSince(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
@@ -112,6 +129,7 @@ struct NewtonAnalysis {
     std::vector<std::int64_t> barPair;        ///< bar -> block pair, -1 when an end is fixed
     std::vector<std::array<std::uint32_t, 2>> pairs; ///< free indices of the blocks' nodes
     SupernodalCholesky cholesky;
+    std::int64_t geometricFactorizations = 0; ///< done with the geometric ordering, all calls
 
     bool matches(const MassSpringSystem& system) const {
         return system.fixed == fixed && system.barA == barA && system.barB == barB;
@@ -386,6 +404,15 @@ void NewtonRun::assemble(bool mixed, bool exact) {
 }
 
 bool NewtonRun::factorize() {
+    if (analysis_.cholesky.ordering() == SupernodalCholesky::Ordering::Geometric &&
+        ++analysis_.geometricFactorizations > kGeometricFactorizations) {
+        const auto t1 = Clock::now();
+        analysis_.cholesky.analyse(analysis_.freeKnots.size(), analysis_.pairs); // METIS's
+        stats_.analysisSeconds += secondsSince(t1);
+        stats_.factorFlops = analysis_.cholesky.factorFlops();
+        stats_.ordering = orderingName(analysis_.cholesky.ordering());
+        stats_.reordered = true;
+    }
     const auto t0 = Clock::now();
     const bool ok = analysis_.cholesky.factorize(values_, shift_ * meanDiagonal_, pool_.get());
     stats_.factorSeconds += secondsSince(t0);
@@ -764,6 +791,7 @@ RelaxResult FastRelaxer::relax(MassSpringSystem& system, const RelaxOptions& opt
         statistics_.analysisSeconds = secondsSince(t0);
     }
     statistics_.factorFlops = analysis_->cholesky.factorFlops();
+    statistics_.ordering = orderingName(analysis_->cholesky.ordering());
     NewtonRun run(system, options, *analysis_, statistics_, start);
     return run.run();
 }
