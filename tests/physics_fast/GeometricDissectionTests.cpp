@@ -106,13 +106,14 @@ TEST_CASE("geometric dissection: a permutation, the same on every run", "[fast]"
     CHECK(isPermutation(geometricNestedDissection(tiny.graph()), tiny.nodes));
 }
 
-TEST_CASE("geometric dissection: the factor costs within 12% of METIS's on nets", "[fast]") {
-    // Measured: 1.05 on a 100 x 200 tube and 1.07 on a 100 x 1000 one (the benchmark's).
+TEST_CASE("geometric dissection: the factor costs no more than METIS's on nets", "[fast]") {
+    // Measured: 0.93 on both of these; 0.96 on the benchmark's 100 x 200 tube, 0.99 on its
+    // 100 x 1000 one, 0.95 on its slack sheet (without the gap search 1.06, 1.09, 1.08).
     const double tube = flopRatio(net(60, 120, true));
     const double sheet = flopRatio(net(60, 120, false));
     INFO("tube " << tube << ", sheet " << sheet);
-    CHECK(tube < 1.12);
-    CHECK(sheet < 1.12);
+    CHECK(tube < 1.0);
+    CHECK(sheet < 1.0);
 }
 
 TEST_CASE("geometric dissection refuses positions that do not separate the net", "[fast]") {

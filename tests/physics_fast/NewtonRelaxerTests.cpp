@@ -363,27 +363,9 @@ TEST_CASE("fast: bad input is a user error", "[fast]") {
     CHECK_THROWS_WITH(relaxFast(broken), Catch::Contains("non-finite position"));
 }
 
-TEST_CASE("fast: the geometric ordering gives way to METIS's after many factorizations", "[fast]") {
-    // 45 x 50 = 2,250 knots, 2,200 free: above SupernodalCholesky's AMD threshold.
-    const MassSpringSystem cold = compileSculpture(tube(45, 50, 2e5)).system;
+TEST_CASE("fast: a net of more than 2,000 free knots is ordered by its knots' positions", "[fast]") {
+    MassSpringSystem system = compileSculpture(tube(45, 50, 2e5)).system; // 2,200 free knots
     FastRelaxer relaxer;
-    std::int64_t factorizations = 0;
-    bool reordered = false;
-    for (int call = 0; call < 12 && !reordered; ++call) {
-        MassSpringSystem system = cold; // same topology: the analysis is kept between calls
-        REQUIRE(relaxer.relax(system, RelaxOptions{}).converged);
-        const NewtonStatistics& stats = relaxer.statistics();
-        factorizations += stats.factorizations;
-        reordered = stats.reordered;
-        if (!reordered)
-            CHECK(std::string(stats.ordering) == "geometric");
-    }
-    REQUIRE(reordered);
-    CHECK(factorizations > 40); // kGeometricFactorizations
-    CHECK(std::string(relaxer.statistics().ordering) == "METIS");
-    MassSpringSystem again = cold;
-    REQUIRE(relaxer.relax(again, RelaxOptions{}).converged);
-    CHECK(relaxer.statistics().reusedAnalysis);
-    CHECK_FALSE(relaxer.statistics().reordered);
-    CHECK(std::string(relaxer.statistics().ordering) == "METIS");
+    REQUIRE(relaxer.relax(system, RelaxOptions{}).converged);
+    CHECK(std::string(relaxer.statistics().ordering) == "geometric");
 }

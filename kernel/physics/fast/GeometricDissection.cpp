@@ -32,6 +32,7 @@ class Dissector {
     struct Split {
         std::size_t separator = 0; ///< its node count
         bool inLower = true;       ///< the separator is the lower half's boundary (else the upper's)
+        std::size_t middle = 0;    ///< the upper half starts at order_[middle]
     };
     Split split(std::size_t begin, std::size_t end, int axis);
 
@@ -46,18 +47,42 @@ class Dissector {
     bool top_ = true;
 };
 
-/// Orders order_[begin, end) by coordinate `axis` (ties by node number) around its median, marks
-/// the two halves and their boundary nodes, and returns the smaller boundary.
+/// Splits order_[begin, end) along coordinate `axis` (ties by node number) at the widest gap
+/// between consecutive coordinates within kSplitWindow of the median (the nearest to the median
+/// among equal gaps): on a net that is between two rows or two columns of knots rather than
+/// through one, whose separator is then one row or column instead of a jagged strip. Marks the
+/// two halves and their boundary nodes; returns the smaller boundary.
 Dissector::Split Dissector::split(std::size_t begin, std::size_t end, int axis) {
     // The selection runs on a contiguous copy of the keys (the positions are scattered).
-    const std::size_t middle = begin + (end - begin) / 2;
-    keys_.resize(end - begin);
+    const std::size_t count = end - begin;
+    keys_.resize(count);
     for (std::size_t k = begin; k < end; ++k)
         keys_[k - begin] = {graph_.coordinates[order_[k]][static_cast<std::size_t>(axis)], order_[k]};
-    std::nth_element(keys_.begin(), keys_.begin() + static_cast<std::ptrdiff_t>(middle - begin),
-                     keys_.end()); // by coordinate, ties by node number
+    const std::size_t half = count / 2;
+    const auto window = static_cast<std::size_t>(kSplitWindow * static_cast<double>(count));
+    std::size_t cut = half; // the lower half is keys_[0, cut)
+    if (window >= 1 && half > window) {
+        const std::size_t low = half - window, high = std::min(half + window, count - 1);
+        const auto at = [&](std::size_t k) { return keys_.begin() + static_cast<std::ptrdiff_t>(k); };
+        std::nth_element(keys_.begin(), at(low), keys_.end());
+        std::nth_element(at(low), at(high), keys_.end());
+        std::sort(at(low), at(high)); // keys_[low, high] in order, all others on their side
+        double widest = -1;
+        for (std::size_t k = low + 1; k <= high; ++k) {
+            const double gap = keys_[k].first - keys_[k - 1].first;
+            const std::size_t offCentre = k > half ? k - half : half - k;
+            const std::size_t bestOff = cut > half ? cut - half : half - cut;
+            if (gap > widest * (1 + 1e-9) || (gap >= widest * (1 - 1e-9) && offCentre < bestOff)) {
+                widest = std::max(widest, gap);
+                cut = k;
+            }
+        }
+    } else {
+        std::nth_element(keys_.begin(), keys_.begin() + static_cast<std::ptrdiff_t>(half), keys_.end());
+    }
     for (std::size_t k = begin; k < end; ++k)
         order_[k] = keys_[k - begin].second;
+    const std::size_t middle = begin + cut;
     const std::uint32_t lower = ++stamp_, upper = ++stamp_;
     for (std::size_t k = begin; k < end; ++k)
         mark_[order_[k]] = k < middle ? lower : upper;
@@ -74,7 +99,8 @@ Dissector::Split Dissector::split(std::size_t begin, std::size_t end, int axis) 
         boundary_[u] = touches;
         (k < middle ? lowerBoundary : upperBoundary) += touches;
     }
-    return lowerBoundary <= upperBoundary ? Split{lowerBoundary, true} : Split{upperBoundary, false};
+    return lowerBoundary <= upperBoundary ? Split{lowerBoundary, true, middle}
+                                          : Split{upperBoundary, false, middle};
 }
 
 void Dissector::dissect(std::size_t begin, std::size_t end) {
@@ -119,7 +145,7 @@ void Dissector::dissect(std::size_t begin, std::size_t end) {
         chosen = split(begin, end, best);
 
     // [lower half minus separator | upper half minus separator | separator]
-    const std::size_t middle = begin + (end - begin) / 2;
+    const std::size_t middle = chosen.middle;
     const std::size_t lowerCount = middle - begin - (chosen.inLower ? chosen.separator : 0);
     const std::size_t upperCount = count - lowerCount - chosen.separator;
     std::size_t nextLower = 0, nextUpper = lowerCount, nextSeparator = lowerCount + upperCount;

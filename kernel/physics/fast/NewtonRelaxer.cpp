@@ -90,11 +90,6 @@ constexpr double kSmallStep = 0.2;
 // After the exact Hessian was found indefinite, the projected one is used for this many
 // iterations before the exact one is tried again.
 constexpr int kExactPause = 3;
-// The geometric ordering (SupernodalCholesky) is replaced by METIS's after this many
-// factorizations with it on one topology: METIS's analysis costs 25-50 of its factorizations'
-// extra flops (20k and 100k knots), so a run (or a sequence of warm starts) that goes on longer
-// than that pays for it.
-constexpr std::int64_t kGeometricFactorizations = 40;
 // Automatic thread count: at most one thread per this many bars.
 constexpr std::size_t kAutoBarsPerThread = 4096;
 
@@ -129,7 +124,6 @@ struct NewtonAnalysis {
     std::vector<std::int64_t> barPair;        ///< bar -> block pair, -1 when an end is fixed
     std::vector<std::array<std::uint32_t, 2>> pairs; ///< free indices of the blocks' nodes
     SupernodalCholesky cholesky;
-    std::int64_t geometricFactorizations = 0; ///< done with the geometric ordering, all calls
 
     bool matches(const MassSpringSystem& system) const {
         return system.fixed == fixed && system.barA == barA && system.barB == barB;
@@ -404,15 +398,6 @@ void NewtonRun::assemble(bool mixed, bool exact) {
 }
 
 bool NewtonRun::factorize() {
-    if (analysis_.cholesky.ordering() == SupernodalCholesky::Ordering::Geometric &&
-        ++analysis_.geometricFactorizations > kGeometricFactorizations) {
-        const auto t1 = Clock::now();
-        analysis_.cholesky.analyse(analysis_.freeKnots.size(), analysis_.pairs); // METIS's
-        stats_.analysisSeconds += secondsSince(t1);
-        stats_.factorFlops = analysis_.cholesky.factorFlops();
-        stats_.ordering = orderingName(analysis_.cholesky.ordering());
-        stats_.reordered = true;
-    }
     const auto t0 = Clock::now();
     const bool ok = analysis_.cholesky.factorize(values_, shift_ * meanDiagonal_, pool_.get());
     stats_.factorSeconds += secondsSince(t0);

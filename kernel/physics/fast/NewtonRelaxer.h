@@ -41,9 +41,7 @@
 //   knots at their positions when the analysis is made, METIS's when those do not separate the
 //   net well; CHOLMOD's symbolic analysis; done once per topology and kept by the relaxer
 //   between calls; own numeric factorization). The geometric ordering costs a fifth of METIS's
-//   but its factor 5-8% more flops: after kGeometricFactorizations factorizations with it (over
-//   all calls on one topology: a slack net, or many warm starts) the analysis is redone once
-//   with METIS's.
+//   and its factor 1-5% fewer flops on the benchmark's nets.
 // - Wind is a position-dependent load without a potential: it enters the force (and so each
 //   Newton step) at the current positions, a fixed point iteration around Newton; with wind the
 //   line search accepts on the residual instead of the energy.
@@ -87,11 +85,9 @@ struct NewtonStatistics {
     double analysisSeconds = 0;      ///< wall time of the analysis (0 when reused)
     double factorSeconds = 0;        ///< wall time in numeric factorizations
     double solveSeconds = 0;         ///< wall time in triangular solves
-    double factorFlops = 0;          ///< per factorization (of the last analysis)
+    double factorFlops = 0;          ///< per factorization
     /// The ordering of the last analysis: "AMD", "METIS" or "geometric" (SupernodalCholesky).
     const char* ordering = "";
-    /// The geometric ordering was replaced by METIS's during this call (see kGeometricFactorizations).
-    bool reordered = false;
 };
 
 /// The Newton backend ("fast"). Keeps the symbolic analysis of the last system it relaxed and
