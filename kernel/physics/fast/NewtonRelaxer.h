@@ -40,8 +40,8 @@
 // - Linear algebra: SupernodalCholesky (a geometric nested-dissection ordering of the free
 //   knots at their positions when the analysis is made, METIS's when those do not separate the
 //   net well; CHOLMOD's symbolic analysis; done once per topology and kept by the relaxer
-//   between calls; own numeric factorization). The geometric ordering costs a fifth of METIS's
-//   and its factor 1-5% fewer flops on the benchmark's nets.
+//   between calls; own numeric factorization). The geometric ordering takes a fifth to a third
+//   of METIS's time, and its factor costs 1-5% fewer flops on the benchmark's nets.
 // - Wind is a position-dependent load without a potential: it enters the force (and so each
 //   Newton step) at the current positions, a fixed point iteration around Newton; with wind the
 //   line search accepts on the residual instead of the energy.
