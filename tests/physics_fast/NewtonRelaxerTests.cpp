@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstring>
 #include <numbers>
+#include <string>
 
 using namespace netsculpt;
 
@@ -360,4 +361,11 @@ TEST_CASE("fast: bad input is a user error", "[fast]") {
     MassSpringSystem broken = system;
     broken.position.back().x = std::nan("");
     CHECK_THROWS_WITH(relaxFast(broken), Catch::Contains("non-finite position"));
+}
+
+TEST_CASE("fast: a net of more than 2,000 free knots is ordered by its knots' positions", "[fast]") {
+    MassSpringSystem system = compileSculpture(tube(45, 50, 2e5)).system; // 2,200 free knots
+    FastRelaxer relaxer;
+    REQUIRE(relaxer.relax(system, RelaxOptions{}).converged);
+    CHECK(std::string(relaxer.statistics().ordering) == "geometric");
 }

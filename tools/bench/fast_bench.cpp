@@ -87,9 +87,9 @@ void runScene(const Scene& scene, int threads, double rk4Cap, bool rk4, bool tra
                 static_cast<long long>(stats.softIterations), stats.softScale,
                 static_cast<long long>(stats.factorizations),
                 static_cast<long long>(stats.failedFactorizations));
-    std::printf("      analysis %.3f s, factorizations %.3f s (%.3g flops each, %.2f GFlop/s), "
-                "solves %.3f s, rest %.3f s; %zu bars in compression at the end\n",
-                stats.analysisSeconds, stats.factorSeconds, stats.factorFlops,
+    std::printf("      analysis %.3f s (%s ordering), factorizations %.3f s (%.3g flops each, "
+                "%.2f GFlop/s), solves %.3f s, rest %.3f s; %zu bars in compression at the end\n",
+                stats.analysisSeconds, stats.ordering, stats.factorSeconds, stats.factorFlops,
                 stats.factorizations > 0
                     ? stats.factorFlops * static_cast<double>(stats.factorizations) /
                           stats.factorSeconds * 1e-9

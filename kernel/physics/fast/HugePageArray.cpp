@@ -17,6 +17,12 @@ constexpr std::size_t kHugePage = std::size_t(2) << 20;
 void HugePageArray::Free::operator()(double* p) const { std::free(p); }
 
 void HugePageArray::assign(std::size_t n) {
+    allocate(n);
+    if (n > 0)
+        std::memset(data_.get(), 0, n * sizeof(double));
+}
+
+void HugePageArray::allocate(std::size_t n) {
     data_.reset();
     size_ = 0;
     if (n == 0)
@@ -28,7 +34,6 @@ void HugePageArray::assign(std::size_t n) {
 #if defined(__linux__)
     madvise(memory, bytes, MADV_HUGEPAGE); // advice only: ordinary pages when refused
 #endif
-    std::memset(memory, 0, bytes);
     data_.reset(static_cast<double*>(memory));
     size_ = n;
 }

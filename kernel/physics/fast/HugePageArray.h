@@ -15,6 +15,10 @@ class HugePageArray {
   public:
     /// n zeros (the previous contents are released).
     void assign(std::size_t n);
+    /// n doubles left as the kernel maps them (its fresh pages read as zero, but no pass over
+    /// them is made here: they are first touched by whoever writes them; the previous contents
+    /// are released). For storage that is always written before it is read, such as a factor.
+    void allocate(std::size_t n);
     double* data() { return data_.get(); }
     const double* data() const { return data_.get(); }
     std::size_t size() const { return size_; }

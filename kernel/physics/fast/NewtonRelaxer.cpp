@@ -95,6 +95,18 @@ constexpr std::size_t kAutoBarsPerThread = 4096;
 
 using Clock = std::chrono::steady_clock;
 
+const char* orderingName(SupernodalCholesky::Ordering ordering) {
+    switch (ordering) {
+    case SupernodalCholesky::Ordering::Amd:
+        return "AMD";
+    case SupernodalCholesky::Ordering::Metis:
+        return "METIS";
+    case SupernodalCholesky::Ordering::Geometric:
+        return "geometric";
+    }
+    return "";
+}
+
 double secondsSince(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
@@ -127,27 +139,42 @@ struct NewtonAnalysis {
                 freeKnots.push_back(static_cast<std::uint32_t>(j));
             }
         // One block per pair of free knots joined by a bar (two bars between the same knots
-        // share it).
+        // share it), numbered in the order of their first bar. The pairs found so far are listed
+        // by their lower free index (flat: a slot per bar, grouped by that index).
         barPair.assign(bars, -1);
-        std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> byLow(freeKnots.size());
+        std::vector<std::uint32_t> slotStart(freeKnots.size() + 1, 0);
+        for (std::size_t b = 0; b < bars; ++b) {
+            const std::int64_t i = freeIndex[barA[b]], j = freeIndex[barB[b]];
+            if (i >= 0 && j >= 0)
+                ++slotStart[static_cast<std::size_t>(std::min(i, j)) + 1];
+        }
+        for (std::size_t f = 0; f < freeKnots.size(); ++f)
+            slotStart[f + 1] += slotStart[f];
+        std::vector<std::uint32_t> slotEnd(slotStart.begin(), slotStart.end() - 1);
+        std::vector<std::uint32_t> slotPair(slotStart.back());
+        pairs.reserve(slotStart.back());
         for (std::size_t b = 0; b < bars; ++b) {
             const std::int64_t i = freeIndex[barA[b]], j = freeIndex[barB[b]];
             if (i < 0 || j < 0)
                 continue;
-            const auto low = static_cast<std::uint32_t>(std::min(i, j));
+            const auto low = static_cast<std::size_t>(std::min(i, j));
             const auto high = static_cast<std::uint32_t>(std::max(i, j));
-            auto& list = byLow[low];
-            auto at = std::find_if(list.begin(), list.end(),
-                                   [&](const auto& entry) { return entry.first == high; });
-            if (at == list.end()) {
-                list.emplace_back(high, static_cast<std::uint32_t>(pairs.size()));
-                barPair[b] = static_cast<std::int64_t>(pairs.size());
+            std::uint32_t k = slotStart[low];
+            while (k < slotEnd[low] && std::max(pairs[slotPair[k]][0], pairs[slotPair[k]][1]) != high)
+                ++k;
+            if (k == slotEnd[low]) {
+                slotPair[slotEnd[low]++] = static_cast<std::uint32_t>(pairs.size());
                 pairs.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)});
-            } else {
-                barPair[b] = at->second;
             }
+            barPair[b] = slotPair[k];
         }
-        cholesky.analyse(freeKnots.size(), pairs);
+        // The free knots' positions (the start's) guide the ordering.
+        std::vector<std::array<double, 3>> coordinates(freeKnots.size());
+        for (std::size_t f = 0; f < freeKnots.size(); ++f) {
+            const Vec3& p = system.position[freeKnots[f]];
+            coordinates[f] = {p.x, p.y, p.z};
+        }
+        cholesky.analyse(freeKnots.size(), pairs, coordinates);
     }
 };
 
@@ -749,6 +776,7 @@ RelaxResult FastRelaxer::relax(MassSpringSystem& system, const RelaxOptions& opt
         statistics_.analysisSeconds = secondsSince(t0);
     }
     statistics_.factorFlops = analysis_->cholesky.factorFlops();
+    statistics_.ordering = orderingName(analysis_->cholesky.ordering());
     NewtonRun run(system, options, *analysis_, statistics_, start);
     return run.run();
 }

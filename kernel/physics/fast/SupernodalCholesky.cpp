@@ -1,6 +1,7 @@
 #include "physics/fast/SupernodalCholesky.h"
 
 #include "physics/ThreadPool.h"
+#include "physics/fast/GeometricDissection.h"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
@@ -16,6 +17,7 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <tuple>
 
 namespace netsculpt {
 
@@ -27,6 +29,8 @@ using VectorMap = Eigen::Map<Eigen::VectorXd>;
 using StridedRef = Eigen::Ref<Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
 
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+// Marks a fill entry whose input block lands transposed in the factor.
+constexpr std::uint32_t kTransposed = std::uint32_t(1) << 31;
 // A subtree of the supernodal elimination tree with fewer flops than this share of the whole
 // factorization is one task of the schedule (tiny supernodes are not worth a hand-over).
 constexpr double kTaskShare = 1.0 / 64;
@@ -67,33 +71,57 @@ class CholmodCommon {
 } // namespace
 
 void SupernodalCholesky::analyse(std::size_t nodes,
-                                 std::span<const std::array<std::uint32_t, 2>> pairs) {
+                                 std::span<const std::array<std::uint32_t, 2>> pairs,
+                                 std::span<const std::array<double, 3>> coordinates) {
     analysed_ = false;
     nodes_ = nodes;
     pairs_ = pairs.size();
     dimension_ = 3 * nodes;
 
-    std::vector<std::vector<std::uint32_t>> neighbours(nodes);
+    // The node graph, both directions, each list sorted.
+    std::vector<std::int64_t> adjacencyStart(nodes + 1, 0);
     for (const auto& [i, j] : pairs) {
         assert(i < nodes && j < nodes && i != j);
-        neighbours[i].push_back(j);
-        neighbours[j].push_back(i);
+        ++adjacencyStart[i + 1];
+        ++adjacencyStart[j + 1];
     }
-    for (auto& list : neighbours)
-        std::sort(list.begin(), list.end());
+    for (std::size_t k = 0; k < nodes; ++k)
+        adjacencyStart[k + 1] += adjacencyStart[k];
+    std::vector<std::uint32_t> adjacency(static_cast<std::size_t>(adjacencyStart[nodes]));
+    {
+        std::vector<std::int64_t> next(adjacencyStart.begin(), adjacencyStart.end() - 1);
+        for (const auto& [i, j] : pairs) {
+            adjacency[static_cast<std::size_t>(next[i]++)] = j;
+            adjacency[static_cast<std::size_t>(next[j]++)] = i;
+        }
+    }
+    for (std::size_t k = 0; k < nodes; ++k)
+        std::sort(adjacency.begin() + adjacencyStart[k], adjacency.begin() + adjacencyStart[k + 1]);
 
-    // The node pattern (upper triangle), ordered and analysed by CHOLMOD: nested dissection
-    // (METIS) for large graphs, AMD for small ones (as good there, and METIS's start-up would
-    // dominate), postordered, supernodal. The scalar structure is that of the nodes with every
-    // node expanded to its three coordinates.
+    // The node pattern (upper triangle), ordered and analysed by CHOLMOD: nested dissection for
+    // large graphs (geometric when positions are given and separate the graph well, else
+    // METIS), AMD for small ones (as good there, and METIS's start-up would dominate),
+    // postordered, supernodal. The scalar structure is that of the nodes with every node
+    // expanded to its three coordinates.
     std::vector<std::int64_t> start(nodes + 1, 0), index;
     index.reserve(nodes + pairs.size());
     for (std::size_t j = 0; j < nodes; ++j) {
-        for (std::uint32_t i : neighbours[j])
-            if (i < j)
-                index.push_back(i);
+        for (std::int64_t e = adjacencyStart[j]; e < adjacencyStart[j + 1]; ++e)
+            if (adjacency[static_cast<std::size_t>(e)] < j)
+                index.push_back(adjacency[static_cast<std::size_t>(e)]);
         index.push_back(static_cast<std::int64_t>(j));
         start[j + 1] = static_cast<std::int64_t>(index.size());
+    }
+    std::vector<std::int64_t> given;
+    ordering_ = nodes > kMetisNodes ? Ordering::Metis : Ordering::Amd;
+    if (nodes > kMetisNodes && !coordinates.empty()) {
+        assert(coordinates.size() == nodes);
+        const std::vector<std::uint32_t> order =
+            geometricNestedDissection(GeometricGraph{adjacencyStart, adjacency, coordinates});
+        if (!order.empty()) {
+            given.assign(order.begin(), order.end());
+            ordering_ = Ordering::Geometric;
+        }
     }
     CholmodCommon common;
     cholmod_common* c = common.get();
@@ -109,7 +137,9 @@ void SupernodalCholesky::analyse(std::size_t nodes,
     pattern.sorted = 1;
     pattern.packed = 1;
     c->nmethods = 1;
-    c->method[0].ordering = nodes > kMetisNodes ? CHOLMOD_METIS : CHOLMOD_AMD;
+    c->method[0].ordering = ordering_ == Ordering::Geometric ? CHOLMOD_GIVEN
+                            : ordering_ == Ordering::Metis   ? CHOLMOD_METIS
+                                                             : CHOLMOD_AMD;
     c->postorder = 1;
     c->supernodal = CHOLMOD_SUPERNODAL;
     for (int k = 0; k < 3; ++k) {
@@ -118,7 +148,8 @@ void SupernodalCholesky::analyse(std::size_t nodes,
     }
     cholmod_factor* factor = nullptr;
     if (nodes > 0) {
-        factor = cholmod_l_analyze(&pattern, c);
+        factor = given.empty() ? cholmod_l_analyze(&pattern, c)
+                               : cholmod_l_analyze_p(&pattern, given.data(), nullptr, 0, c);
         if (!factor)
             cholmodFailed("ordering and supernodal symbolic factorization", c);
         if (!factor->is_super)
@@ -204,55 +235,52 @@ void SupernodalCholesky::analyse(std::size_t nodes,
             });
     }
 
-    // Where each input value goes: (row, column) in pivot order, lower triangle.
-    std::vector<std::int64_t> inverse(dimension_);
-    for (std::size_t k = 0; k < dimension_; ++k)
-        inverse[static_cast<std::size_t>(perm_[k])] = static_cast<std::int64_t>(k);
-    const std::size_t valueCount = 9 * (nodes + pairs_);
-    std::vector<std::uint32_t> targetOf(valueCount, kNone);
-    std::vector<std::uint32_t> offsetOf(valueCount, 0);
-    auto place = [&](std::size_t v, std::int64_t row, std::int64_t col) {
-        if (row < col)
-            std::swap(row, col);
+    // Where each input block goes, placed block by block (a node's three unknowns are
+    // consecutive pivots, columns of one supernode and consecutive rows of every supernode that
+    // holds them): the offset in its target supernode's dense block of the block's first entry,
+    // and whether it lands transposed (its node of rows is pivoted before its node of columns).
+    std::vector<std::int64_t> nodePivot(nodes);
+    for (std::size_t k = 0; k < nodes; ++k)
+        nodePivot[static_cast<std::size_t>(perm_[3 * k] / 3)] = static_cast<std::int64_t>(k);
+    const std::size_t blockCount = nodes + pairs_;
+    std::vector<std::uint32_t> blockTarget(blockCount);
+    std::vector<std::uint32_t> blockBase(blockCount);
+    auto base = [&](std::int64_t rowPivot, std::int64_t colPivot) {
+        const std::int64_t row = 3 * rowPivot, col = 3 * colPivot;
         const std::uint32_t s = columnSuper_[static_cast<std::size_t>(col)];
         const auto* begin = rows_.data() + rowStart_[s];
         const auto* end = rows_.data() + rowStart_[s + 1];
         const auto* at = std::lower_bound(begin, end, row);
-        assert(at != end && *at == row);
+        assert(at + 2 < end && *at == row);
         const std::int64_t offset = (col - superStart_[s]) * rowCount(s) + (at - begin);
-        if (offset > std::numeric_limits<std::uint32_t>::max())
+        if (offset + 2 * rowCount(s) + 2 > std::numeric_limits<std::uint32_t>::max())
             throw std::runtime_error("sparse Cholesky analysis: a supernode is too large");
-        targetOf[v] = s;
-        offsetOf[v] = static_cast<std::uint32_t>(offset);
+        return std::pair{s, static_cast<std::uint32_t>(offset)};
     };
-    for (std::size_t node = 0; node < nodes; ++node)
-        for (int a = 0; a < 3; ++a)
-            for (int b = 0; b < 3; ++b) {
-                const std::int64_t row = inverse[3 * node + a], col = inverse[3 * node + b];
-                if (row >= col) // the other half of a symmetric diagonal block is the same value
-                    place(9 * node + 3 * a + b, row, col);
-            }
-    for (std::size_t p = 0; p < pairs_; ++p)
-        for (int a = 0; a < 3; ++a)
-            for (int b = 0; b < 3; ++b)
-                place(9 * (nodes + p) + 3 * a + b, inverse[3 * pairs[p][0] + a],
-                      inverse[3 * pairs[p][1] + b]);
+    for (std::size_t node = 0; node < nodes; ++node) {
+        const std::int64_t k = nodePivot[node];
+        std::tie(blockTarget[node], blockBase[node]) = base(k, k);
+    }
+    for (std::size_t p = 0; p < pairs_; ++p) {
+        const std::int64_t i = nodePivot[pairs[p][0]], j = nodePivot[pairs[p][1]];
+        std::tie(blockTarget[nodes + p], blockBase[nodes + p]) = i > j ? base(i, j) : base(j, i);
+        if (i < j)
+            blockTarget[nodes + p] |= kTransposed;
+    }
     fillStart_.assign(supers + 1, 0);
-    for (std::uint32_t s : targetOf)
-        if (s != kNone)
-            ++fillStart_[s + 1];
+    for (std::uint32_t target : blockTarget)
+        ++fillStart_[(target & ~kTransposed) + 1];
     for (std::size_t s = 0; s < supers; ++s)
         fillStart_[s + 1] += fillStart_[s];
-    fillSource_.resize(static_cast<std::size_t>(fillStart_[supers]));
-    fillOffset_.resize(fillSource_.size());
+    fillBlock_.resize(blockCount);
+    fillBase_.resize(blockCount);
     {
         std::vector<std::int64_t> next(fillStart_.begin(), fillStart_.end() - 1);
-        for (std::size_t v = 0; v < valueCount; ++v) {
-            if (targetOf[v] == kNone)
-                continue;
-            const auto k = static_cast<std::size_t>(next[targetOf[v]]++);
-            fillSource_[k] = static_cast<std::uint32_t>(v);
-            fillOffset_[k] = offsetOf[v];
+        for (std::size_t v = 0; v < blockCount; ++v) {
+            const std::uint32_t target = blockTarget[v] & ~kTransposed;
+            const auto k = static_cast<std::size_t>(next[target]++);
+            fillBlock_[k] = static_cast<std::uint32_t>(v) | (blockTarget[v] & kTransposed);
+            fillBase_[k] = blockBase[v];
         }
     }
     diagonalOffset_.resize(dimension_);
@@ -312,7 +340,8 @@ void SupernodalCholesky::analyse(std::size_t nodes,
         }
     }
 
-    values_.assign(static_cast<std::size_t>(valueStart_[supers]));
+    // Every block is zeroed and filled by its factorization before anything reads it.
+    values_.allocate(static_cast<std::size_t>(valueStart_[supers]));
     workers_.clear();
     analysed_ = true;
 }
@@ -324,8 +353,27 @@ bool SupernodalCholesky::factorSupernode(std::size_t s, std::span<const double> 
     double* block = values_.data() + valueStart_[s];
     MatrixMap l(block, rowCount, cols);
     l.setZero();
-    for (std::int64_t k = fillStart_[s]; k < fillStart_[s + 1]; ++k)
-        block[fillOffset_[static_cast<std::size_t>(k)]] = values[fillSource_[static_cast<std::size_t>(k)]];
+    // The input blocks: a diagonal one's lower triangle, a pair's nine entries, each entry (a, b)
+    // at row a, column b of the block (b, a when transposed).
+    for (std::int64_t k = fillStart_[s]; k < fillStart_[s + 1]; ++k) {
+        const std::uint32_t entry = fillBlock_[static_cast<std::size_t>(k)];
+        const std::size_t source = entry & ~kTransposed;
+        const double* v = values.data() + 9 * source;
+        double* to = block + fillBase_[static_cast<std::size_t>(k)];
+        if (source < nodes_) {
+            for (int b = 0; b < 3; ++b)
+                for (int a = b; a < 3; ++a)
+                    to[b * rowCount + a] = v[3 * a + b];
+        } else if (entry & kTransposed) {
+            for (int a = 0; a < 3; ++a)
+                for (int b = 0; b < 3; ++b)
+                    to[a * rowCount + b] = v[3 * a + b];
+        } else {
+            for (int a = 0; a < 3; ++a)
+                for (int b = 0; b < 3; ++b)
+                    to[b * rowCount + a] = v[3 * a + b];
+        }
+    }
     for (std::int64_t k = 0; k < cols; ++k)
         block[diagonalOffset_[static_cast<std::size_t>(superStart_[s] + k)]] += shift;
 

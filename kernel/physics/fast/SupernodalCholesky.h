@@ -3,11 +3,12 @@
 // blocks, one block row and column per node (a knot's three coordinates): the linear algebra of
 // the Newton relaxer (NewtonRelaxer.h).
 //
-// The pattern is analysed once: nested-dissection ordering of the node graph (METIS, through
-// CHOLMOD), then CHOLMOD's supernodal symbolic factorization of the expanded scalar pattern. The
-// numeric factorization is this file's own: a left-looking supernodal one whose dense kernels
-// are Eigen's (the system BLAS that CHOLMOD would call is the slow reference one). Refactoring
-// with new values reuses everything the analysis built.
+// The pattern is analysed once: nested-dissection ordering of the node graph (geometric when the
+// nodes' positions are given, GeometricDissection.h; else METIS, through CHOLMOD), then CHOLMOD's
+// supernodal symbolic factorization of the expanded scalar pattern. The numeric factorization is
+// this file's own: a left-looking supernodal one whose dense kernels are Eigen's (the system BLAS
+// that CHOLMOD would call is the slow reference one). Refactoring with new values reuses
+// everything the analysis built.
 //
 // Determinism: every supernode pulls the updates of its descendants in a fixed order, whatever
 // thread runs it and whenever, so the factor and the solutions are bit-identical for any number
@@ -29,9 +30,19 @@ class SupernodalCholesky {
   public:
     SupernodalCholesky() = default;
 
+    /// How the last analysis ordered the nodes.
+    enum class Ordering {
+        Amd,       ///< approximate minimum degree (graphs of at most 2,000 nodes)
+        Metis,     ///< METIS's nested dissection
+        Geometric, ///< geometric nested dissection of the nodes' positions (GeometricDissection.h)
+    };
+
     /// Analyses the pattern of a matrix of `nodes` x `nodes` blocks: the diagonal blocks and one
     /// block for each pair (i, j), i != j, of `pairs` (each unordered pair at most once).
-    void analyse(std::size_t nodes, std::span<const std::array<std::uint32_t, 2>> pairs);
+    /// `coordinates` (empty, or one position per node, any unit) lets a large graph be ordered by
+    /// geometric nested dissection instead of METIS; the ordering then depends on them too.
+    void analyse(std::size_t nodes, std::span<const std::array<std::uint32_t, 2>> pairs,
+                 std::span<const std::array<double, 3>> coordinates = {});
 
     bool analysed() const { return analysed_; }
     std::size_t nodes() const { return nodes_; }
@@ -54,6 +65,7 @@ class SupernodalCholesky {
     std::size_t factorEntries() const { return values_.size(); }
     /// Floating-point operations of one numeric factorization (CHOLMOD's count).
     double factorFlops() const { return flops_; }
+    Ordering ordering() const { return ordering_; }
 
   private:
     struct Update {
@@ -74,6 +86,7 @@ class SupernodalCholesky {
     bool analysed_ = false;
     std::size_t nodes_ = 0, pairs_ = 0, dimension_ = 0;
     double flops_ = 0;
+    Ordering ordering_ = Ordering::Amd;
 
     // Supernodal structure (CHOLMOD's), rows and columns in pivot order.
     std::vector<std::int64_t> perm_;          ///< pivot k is original unknown perm_[k]
@@ -84,10 +97,12 @@ class SupernodalCholesky {
     std::vector<std::uint32_t> columnSuper_;  ///< column -> supernode
     std::vector<std::int64_t> updateStart_;   ///< updates_[updateStart_[s] .. updateStart_[s+1]) into s
     std::vector<Update> updates_;
-    // Filling a supernode from the input: value index -> offset in its block.
+    // Filling a supernode from the input, block by block: supernode s takes the input blocks
+    // fillBlock_[fillStart_[s] .. fillStart_[s+1]) (kTransposed set: it lands transposed), the
+    // first entry of each at fillBase_[k] in its dense block.
     std::vector<std::int64_t> fillStart_;
-    std::vector<std::uint32_t> fillSource_;
-    std::vector<std::uint32_t> fillOffset_;
+    std::vector<std::uint32_t> fillBlock_;
+    std::vector<std::uint32_t> fillBase_;
     std::vector<std::uint32_t> diagonalOffset_; ///< per column: its diagonal entry in its block
 
     // Schedule: tasks in a topological order; a task is one subtree (small ones, run as a whole)
