@@ -12,9 +12,11 @@
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <numbers>
 #include <string>
 
@@ -298,6 +300,47 @@ TEST_CASE("fast: never reports converged when it is not", "[fast]") {
     CHECK_FALSE(zero.converged);
     CHECK(zero.steps == 0);
     CHECK(zero.residual == residual(none));
+}
+
+TEST_CASE("fast: a run stopped at the material's stiffness returns its best state there", "[fast]") {
+    // Without continuation the whole run is at the material's stiffness, from the Eq. 2 start of
+    // a slack sheet: its residual rises and falls from one iteration to the next while the
+    // energy goes down. Stopped after m iterations, the run returns the lowest-residual state it
+    // met, so the residual returned never grows with m.
+    const MassSpringSystem start = compileSculpture(slackSheet(12, 16, 2e5)).system;
+    RelaxOptions options;
+    options.continuation = false;
+    options.maxSeconds = 30;
+    options.progressInterval = 0;
+    std::vector<double> seen; // the residual of each iterate, as progress reports it
+    options.progress = [&](const RelaxProgress& p) {
+        if (p.steps == static_cast<std::int64_t>(seen.size()))
+            seen.push_back(p.residual);
+    };
+    MassSpringSystem full = start;
+    FastRelaxer relaxer;
+    const RelaxResult complete = relaxer.relax(full, options);
+    REQUIRE(complete.converged);
+    int rises = 0;
+    for (std::size_t i = 1; i < seen.size(); ++i)
+        rises += seen[i] > seen[i - 1] ? 1 : 0;
+    INFO(complete.steps << " iterations; the residual rose " << rises << " times");
+    REQUIRE(rises > 0); // so the check below could fail
+
+    options.progress = nullptr;
+    double previous = std::numeric_limits<double>::infinity();
+    for (std::int64_t m = 1; m < complete.steps; m += m < 40 ? 1 : 97) {
+        MassSpringSystem system = start;
+        options.maxSteps = m;
+        const RelaxResult stopped = relaxer.relax(system, options);
+        REQUIRE(stopped.stopReason == "step limit");
+        INFO("stopped after " << m << " iterations: residual " << stopped.residual);
+        CHECK(stopped.residual == residual(system));
+        CHECK(stopped.residual <= previous);
+        CHECK(stopped.residual ==
+              Approx(*std::min_element(seen.begin(), seen.begin() + m + 1)).epsilon(1e-12));
+        previous = stopped.residual;
+    }
 }
 
 TEST_CASE("fast: an already relaxed system takes no step", "[fast]") {

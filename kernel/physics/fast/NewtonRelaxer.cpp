@@ -207,6 +207,7 @@ class NewtonRun {
     double meritOf(const std::vector<Vec3>& at);
     void takeStep(double alpha, bool mixed);
     bool stopRequested();
+    void keepIfBest();
     void report(bool force);
 
     MassSpringSystem& system_;
@@ -236,6 +237,10 @@ class NewtonRun {
     std::int64_t steps_ = 0, evaluations_ = 0;
     double lastProgress_ = -std::numeric_limits<double>::infinity();
     std::string stopReason_;
+    // The last stage (the material's stiffness): its best state so far, returned when the run
+    // stops before converging (its residual can rise and fall from one iteration to the next).
+    std::vector<Vec3> bestX_;
+    double bestResidual_ = std::numeric_limits<double>::infinity();
 };
 
 NewtonRun::NewtonRun(MassSpringSystem& system, const RelaxOptions& options,
@@ -485,6 +490,14 @@ void NewtonRun::takeStep(double alpha, bool mixed) {
         x_[j] += step_[j] * alpha;
 }
 
+/// Keeps x_ as the last stage's best state when its residual is the lowest so far.
+void NewtonRun::keepIfBest() {
+    if (!(residual_ < bestResidual_))
+        return;
+    bestResidual_ = residual_;
+    bestX_ = x_;
+}
+
 bool NewtonRun::stopRequested() {
     if (options_.cancel && options_.cancel->load(std::memory_order_relaxed))
         stopReason_ = "cancelled";
@@ -592,6 +605,9 @@ RelaxResult NewtonRun::run() {
             damping_ = kDampingStart;
         const std::int64_t stageStart = steps_;
         int exactPause = 0; // iterations left before the exact Hessian is tried again
+        const bool lastStage = stageIndex + 1 == stages.size();
+        if (lastStage)
+            keepIfBest();
 
         while (!(residual_ < stage.tolerance)) {
             if (stopRequested())
@@ -688,6 +704,8 @@ RelaxResult NewtonRun::run() {
                 shift_ = std::max(shift_ * 10, kFailShift);
             takeStep(alpha, mixed);
             residual_ = evaluate(x_);
+            if (lastStage)
+                keepIfBest();
             if (alpha == 1.0)
                 shift_ = std::max(shift_ * 0.1, minShift);
             if (!mixed && !windy_ && slack) {
@@ -721,6 +739,8 @@ RelaxResult NewtonRun::run() {
     }
     if (stopReason_.empty())
         stopReason_ = "converged";
+    else if (bestResidual_ < residual_)
+        x_ = bestX_;
 
     // The answer is judged by the project's own measure on exactly the positions returned.
     for (std::uint32_t j : analysis_.freeKnots)

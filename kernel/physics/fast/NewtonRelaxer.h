@@ -48,7 +48,9 @@
 //
 // Converged means what it means for every backend: the residual of Eq. 3 at the material's
 // stiffness (physics/Forces.h residual(), max over free knots of |F_j| / (m_j |g|)) below the
-// tolerance, computed on exactly the positions returned.
+// tolerance, computed on exactly the positions returned. A run stopped before converging
+// (time, step limit, cancel) in its last stage returns that stage's lowest-residual state: its
+// residual rises and falls from one iteration to the next while the energy goes down.
 //
 // Determinism: every pass that threads share writes per-bar or per-knot results and every sum
 // runs in a fixed order on one thread, and the factorization is deterministic by construction,
