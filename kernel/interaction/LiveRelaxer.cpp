@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <unordered_map>
 
 #ifdef __linux__
 #include <sys/resource.h>
@@ -21,7 +22,88 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+/// A knot's first (piece, row, column) as one number; false when it does not fit 24/20/20 bits.
+bool knotKey(const MassSpringSystem& system, std::size_t knot, std::uint64_t& key) {
+    if (system.refStart.size() != system.knotCount() + 1 || system.refStart[knot] == system.refStart[knot + 1])
+        return false;
+    const KnotRef& ref = system.refs[system.refStart[knot]];
+    if (ref.piece.value >= (1u << 24) || ref.row < 0 || ref.row >= (1 << 20) || ref.column < 0 ||
+        ref.column >= (1 << 20))
+        return false;
+    key = std::uint64_t{ref.piece.value} << 40 | std::uint64_t(ref.row) << 20 | std::uint64_t(ref.column);
+    return true;
+}
+
+/// Eq. 3's tension of bar b of `law` (its rest length and stiffness) at length l, N.
+double tensionOf(const MassSpringSystem& law, std::size_t b, double l) {
+    const double extension = l - law.restLength[b];
+    return (extension > 0 ? law.kTension[b] : law.kCompression[b]) * extension;
+}
+
+std::uint64_t pairKey(std::uint32_t a, std::uint32_t b) {
+    return std::uint64_t{std::min(a, b)} << 32 | std::max(a, b);
+}
+
 } // namespace
+
+std::vector<double> startTensions(const MassSpringSystem& previous, const MassSpringSystem& next) {
+    const std::size_t bars = next.barCount();
+    auto lengthOf = [&](std::size_t b) { return distance(next.position[next.barA[b]], next.position[next.barB[b]]); };
+    std::vector<double> hint(bars, 0.0);
+    if (previous.barA == next.barA && previous.barB == next.barB && previous.knotCount() == next.knotCount()) {
+        for (std::size_t b = 0; b < bars; ++b) hint[b] = tensionOf(previous, b, lengthOf(b)); // same topology
+        return hint;
+    }
+    // Another topology (rows or columns changed): bars are matched by the knots they join.
+    std::unordered_map<std::uint64_t, std::uint32_t> oldKnot;
+    oldKnot.reserve(previous.knotCount());
+    for (std::size_t j = 0; j < previous.knotCount(); ++j) {
+        std::uint64_t key = 0;
+        if (knotKey(previous, j, key)) oldKnot.emplace(key, static_cast<std::uint32_t>(j));
+    }
+    std::unordered_map<std::uint64_t, std::uint32_t> oldBar;
+    oldBar.reserve(previous.barCount());
+    for (std::size_t b = 0; b < previous.barCount(); ++b)
+        oldBar.emplace(pairKey(previous.barA[b], previous.barB[b]), static_cast<std::uint32_t>(b));
+    auto oldOf = [&](std::uint32_t knot, std::uint32_t& old) {
+        std::uint64_t key = 0;
+        if (!knotKey(next, knot, key)) return false;
+        const auto at = oldKnot.find(key);
+        if (at == oldKnot.end()) return false;
+        old = at->second;
+        return true;
+    };
+    std::vector<std::uint8_t> matched(bars, 0);
+    std::vector<double> knotSum(next.knotCount(), 0.0);
+    std::vector<std::uint32_t> knotCount(next.knotCount(), 0);
+    std::size_t matchedCount = 0;
+    for (std::size_t b = 0; b < bars; ++b) {
+        std::uint32_t a = 0, e = 0;
+        if (!oldOf(next.barA[b], a) || !oldOf(next.barB[b], e)) continue;
+        const auto at = oldBar.find(pairKey(a, e));
+        if (at == oldBar.end()) continue;
+        hint[b] = tensionOf(previous, at->second, lengthOf(b));
+        matched[b] = 1;
+        ++matchedCount;
+        if (hint[b] > 0)
+            for (std::uint32_t knot : {next.barA[b], next.barB[b]}) {
+                knotSum[knot] += hint[b];
+                ++knotCount[knot];
+            }
+    }
+    if (2 * matchedCount < bars) return {};
+    for (std::size_t b = 0; b < bars; ++b) {
+        if (matched[b]) continue;
+        double sum = 0;
+        std::uint32_t count = 0;
+        for (std::uint32_t knot : {next.barA[b], next.barB[b]}) {
+            sum += knotSum[knot];
+            count += knotCount[knot];
+        }
+        hint[b] = count > 0 ? sum / count : tensionOf(next, b, lengthOf(b));
+    }
+    return hint;
+}
 
 void scaleStiffness(MassSpringSystem& system, double scale) {
     for (double& k : system.kTension) k *= scale;
@@ -96,9 +178,12 @@ bool LiveRelaxer::hasPending() const {
 
 void LiveRelaxer::publish(LiveState state) {
     auto shared = std::make_shared<LiveState>(std::move(state));
-    std::lock_guard lock(mutex_);
-    shared->sequence = ++sequence_;
-    latest_ = std::move(shared);
+    {
+        std::lock_guard lock(mutex_);
+        shared->sequence = ++sequence_;
+        latest_ = shared;
+    }
+    if (options_.onPublish) options_.onPublish(*shared);
 }
 
 void LiveRelaxer::setNiceness(int niceness) { niceness_ = std::clamp(niceness, 0, 19); }
@@ -172,14 +257,29 @@ void LiveRelaxer::runJob(Job& job) {
             const double scale = previewScale(job.system, options_.previewStiffnessScale);
             MassSpringSystem soft = job.system;
             scaleStiffness(soft, scale);
+            // The tensions the start shape had before the edit: the fast path's predictor.
+            const std::vector<double> hint = previous_ ? startTensions(*previous_, soft) : std::vector<double>{};
+            previous_.reset();
+            o.startTensions = hint;
             o.tolerance = options_.previewTolerance;
             o.continuation = relaxer_->name() == "fast";
             o.maxSeconds = options_.maxSeconds;
-            o.progressInterval = options_.publishInterval;
+            // Every report reaches the callback, which publishes when waiting for the next one
+            // (about as far off as the last one was) would keep a shape on screen longer than the
+            // publish interval: with a Newton iteration of 25 ms that is every iteration, not
+            // every second one (50 ms) as an interval test alone would give.
+            o.progressInterval = 0;
+            double lastShown = 0, lastReport = 0;
             state.stiffnessScale = scale;
             o.progress = [&](const RelaxProgress& p) {
                 if (p.positions.size() != soft.knotCount())
                     return;
+                const double now = seconds();
+                const double period = now - lastReport;
+                lastReport = now;
+                if (now - lastShown + period < options_.publishInterval)
+                    return;
+                lastShown = now;
                 LiveState shown = state;
                 shown.stiffnessScale = scale * p.stiffnessScale; // the fast path may start softer
                 shown.residual = p.residual;
@@ -193,10 +293,12 @@ void LiveRelaxer::runJob(Job& job) {
             state.residual = r.residual;
             if (r.stopReason == "cancelled" || superseded()) {
                 if (!hasPending()) finish("cancelled", soft.position); // else a newer run follows
-                return;
+            } else {
+                state.converged = r.converged;
+                finish(r.stopReason, soft.position);
             }
-            state.converged = r.converged;
-            return finish(r.stopReason, soft.position);
+            previous_ = std::move(soft);
+            return;
         }
         // Refine: the material's stiffness in one run, so the backend keeps its own continuation
         // (restarting it in pieces can lead a slack net to another equilibrium); its progress
@@ -213,17 +315,20 @@ void LiveRelaxer::runJob(Job& job) {
             report.seconds = seconds();
             publish(std::move(report));
         };
+        previous_.reset();
         const RelaxResult r = relaxer_->relax(job.system, o);
         state.steps = r.steps;
         state.residual = r.residual;
         state.stiffnessScale = 1;
         if (r.stopReason == "cancelled" || superseded()) {
             if (!hasPending()) finish("cancelled", job.system.position);
-            return;
+        } else {
+            state.converged = r.converged;
+            finish(r.stopReason, job.system.position);
         }
-        state.converged = r.converged;
-        finish(r.stopReason, job.system.position);
+        previous_ = std::move(job.system);
     } catch (const UserError& e) {
+        previous_.reset();
         state.error = e.what();
         finish("error", job.system.position);
     }

@@ -11,6 +11,10 @@
 // the material's stiffness in one run (the backend's own stiffness continuation) down to the
 // refine tolerance, publishing its residual as it converges and the positions at the end.
 //
+// Warm starts: each preview passes the backend the tensions its start shape had in the system
+// before the edit (startTensions), which the fast path turns into a predictor step: after a small
+// edit it converges in two or three Newton iterations instead of redoing its soft start stage.
+//
 // Publication: the worker builds a new immutable LiveState and swaps a shared_ptr under a mutex;
 // latest() copies the pointer (the UI reads a state nobody writes).
 
@@ -20,6 +24,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -28,6 +33,8 @@
 #include <vector>
 
 namespace netsculpt {
+
+struct LiveState;
 
 struct LiveRelaxOptions {
     /// Stiffness of the preview relative to the material, in (0, 1]. Raised when it would be so soft
@@ -39,6 +46,9 @@ struct LiveRelaxOptions {
     double publishInterval = 1.0 / 30; ///< s, at least, between two published preview shapes
     std::string backend = "auto";     ///< see makeRelaxer
     int threads = 0;                  ///< RelaxOptions::threads
+    /// Called on the worker thread right after each publication, with the state published (to
+    /// wake a UI, or to time publications). Empty = none. Must not call back into the relaxer.
+    std::function<void(const LiveState&)> onPublish;
 };
 
 enum class LivePhase { Idle, Preview, Refine };
@@ -113,6 +123,10 @@ class LiveRelaxer {
     std::uint64_t sequence_ = 0;
     std::shared_ptr<const LiveState> latest_;
     std::unique_ptr<Relaxer> relaxer_; ///< used by the worker thread only
+    /// Worker thread only: the system of the last run (the preview's soft copy, or the material
+    /// for a refine) with the positions it ended at, whose law gives the next preview's tension
+    /// hint (startTensions below). Empty before the first run and after an error.
+    std::optional<MassSpringSystem> previous_;
     std::thread worker_; // last: starts after everything it uses exists
 };
 
@@ -120,5 +134,13 @@ class LiveRelaxer {
 double previewScale(const MassSpringSystem& system, double requested);
 /// Every bar's stiffness (tension and compression) times `scale`: the preview's soft copy.
 void scaleStiffness(MassSpringSystem& system, double scale);
+/// The warm-start hint for relaxing `next` after `previous` (RelaxOptions::startTensions): for
+/// every bar of `next` that joins the same two (piece, row, column) knots as a bar of
+/// `previous`, that bar's tension under `previous`'s rest length and stiffness at `next`'s
+/// positions (N): the tension the shape had before the edit. A bar new in `next` takes the mean
+/// positive hint of the old bars at its knots (new rows carry load like the row above), or its
+/// own elastic tension when none has one. Empty (no hint) when fewer than half of `next`'s bars
+/// existed in `previous`.
+std::vector<double> startTensions(const MassSpringSystem& previous, const MassSpringSystem& next);
 
 } // namespace netsculpt
