@@ -46,6 +46,50 @@ std::uint64_t pairKey(std::uint32_t a, std::uint32_t b) {
 
 } // namespace
 
+std::size_t continueNewRows(const MassSpringSystem& previous, MassSpringSystem& next) {
+    // Columns per piece (the largest column + 1) in both systems: only a piece whose column count
+    // is the same has rows to go on from.
+    auto columnsOf = [](const MassSpringSystem& system) {
+        std::unordered_map<std::uint32_t, int> columns;
+        for (const KnotRef& ref : system.refs) columns[ref.piece.value] = std::max(columns[ref.piece.value], ref.column + 1);
+        return columns;
+    };
+    const auto oldColumns = columnsOf(previous), newColumns = columnsOf(next);
+    std::unordered_map<std::uint64_t, std::uint32_t> oldKnot, newKnot;
+    for (std::size_t j = 0; j < previous.knotCount(); ++j) {
+        std::uint64_t key = 0;
+        if (knotKey(previous, j, key)) oldKnot.emplace(key, static_cast<std::uint32_t>(j));
+    }
+    std::vector<std::pair<int, std::uint32_t>> added; // (row, knot) of knots new in `next`
+    for (std::size_t j = 0; j < next.knotCount(); ++j) {
+        std::uint64_t key = 0;
+        if (!knotKey(next, j, key)) continue;
+        newKnot.emplace(key, static_cast<std::uint32_t>(j));
+        const KnotRef& ref = next.refs[next.refStart[j]];
+        const auto old = oldColumns.find(ref.piece.value);
+        if (!next.fixed[j] && !oldKnot.contains(key) && ref.row >= 3 && old != oldColumns.end() &&
+            old->second == newColumns.at(ref.piece.value))
+            added.emplace_back(ref.row, static_cast<std::uint32_t>(j));
+    }
+    std::sort(added.begin(), added.end()); // rows in order: a new row goes on from the new rows above it
+    std::size_t placed = 0;
+    for (const auto& [row, j] : added) {
+        const KnotRef& ref = next.refs[next.refStart[j]];
+        std::uint32_t above[3];
+        bool found = true;
+        for (int i = 0; i < 3 && found; ++i) {
+            const std::uint64_t key = std::uint64_t{ref.piece.value} << 40 | std::uint64_t(row - 1 - i) << 20 | std::uint64_t(ref.column);
+            const auto at = newKnot.find(key);
+            found = at != newKnot.end();
+            if (found) above[i] = at->second;
+        }
+        if (!found) continue;
+        next.position[j] = next.position[above[0]] + next.position[above[1]] - next.position[above[2]];
+        ++placed;
+    }
+    return placed;
+}
+
 std::vector<double> startTensions(const MassSpringSystem& previous, const MassSpringSystem& next) {
     const std::size_t bars = next.barCount();
     auto lengthOf = [&](std::size_t b) { return distance(next.position[next.barA[b]], next.position[next.barB[b]]); };
@@ -92,16 +136,33 @@ std::vector<double> startTensions(const MassSpringSystem& previous, const MassSp
             }
     }
     if (2 * matchedCount < bars) return {};
-    for (std::size_t b = 0; b < bars; ++b) {
-        if (matched[b]) continue;
-        double sum = 0;
-        std::uint32_t count = 0;
-        for (std::uint32_t knot : {next.barA[b], next.barB[b]}) {
-            sum += knotSum[knot];
-            count += knotCount[knot];
+    // New bars, in passes outward from the old ones (several rows added: the second new row's
+    // bars take the first's); a bar that no pass reaches keeps its own elastic tension.
+    for (bool grew = true; grew;) {
+        grew = false;
+        std::vector<std::pair<std::size_t, double>> reached;
+        for (std::size_t b = 0; b < bars; ++b) {
+            if (matched[b]) continue;
+            double sum = 0;
+            std::uint32_t count = 0;
+            for (std::uint32_t knot : {next.barA[b], next.barB[b]}) {
+                sum += knotSum[knot];
+                count += knotCount[knot];
+            }
+            if (count > 0) reached.emplace_back(b, sum / count);
         }
-        hint[b] = count > 0 ? sum / count : tensionOf(next, b, lengthOf(b));
+        for (const auto& [b, t] : reached) {
+            hint[b] = t;
+            matched[b] = 1;
+            grew = true;
+            for (std::uint32_t knot : {next.barA[b], next.barB[b]}) {
+                knotSum[knot] += t;
+                ++knotCount[knot];
+            }
+        }
     }
+    for (std::size_t b = 0; b < bars; ++b)
+        if (!matched[b]) hint[b] = tensionOf(next, b, lengthOf(b));
     return hint;
 }
 
@@ -257,7 +318,9 @@ void LiveRelaxer::runJob(Job& job) {
             const double scale = previewScale(job.system, options_.previewStiffnessScale);
             MassSpringSystem soft = job.system;
             scaleStiffness(soft, scale);
-            // The tensions the start shape had before the edit: the fast path's predictor.
+            // Rows added below go on with the shape above them, and the tensions the start shape
+            // had before the edit make the fast path's predictor.
+            if (previous_) continueNewRows(*previous_, soft);
             const std::vector<double> hint = previous_ ? startTensions(*previous_, soft) : std::vector<double>{};
             previous_.reset();
             o.startTensions = hint;
