@@ -335,7 +335,7 @@ void LiveRelaxer::runJob(Job& job) {
             double lastShown = 0, lastReport = 0;
             state.stiffnessScale = scale;
             o.progress = [&](const RelaxProgress& p) {
-                if (p.positions.size() != soft.knotCount())
+                if (p.positions.size() != soft.knotCount() || p.steps == 0) // the start: shown already
                     return;
                 const double now = seconds();
                 const double period = now - lastReport;
