@@ -22,6 +22,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// Two rest-length edits are the same edit (a drag's steps) when the second, less its best
+// multiple of the first, is below this share of it (Euclidean norms over the bars).
+constexpr double kRepeatTolerance = 1e-3;
+
 /// A knot's first (piece, row, column) as one number; false when it does not fit 24/20/20 bits.
 bool knotKey(const MassSpringSystem& system, std::size_t knot, std::uint64_t& key) {
     if (system.refStart.size() != system.knotCount() + 1 || system.refStart[knot] == system.refStart[knot + 1])
@@ -289,6 +293,38 @@ void LiveRelaxer::workerLoop() {
     idle_.notify_all();
 }
 
+bool LiveRelaxer::extrapolate(const MassSpringSystem& previous, MassSpringSystem& next, std::vector<double>& restChange) {
+    // Only an edit of the shape the last run ended at that keeps the bars (masses and k_s = EA / l
+    // follow the rest lengths; an edit of something else as well is caught by the residual test).
+    if (previous.barA != next.barA || previous.barB != next.barB || previous.position != next.position) return false;
+    restChange.resize(next.barCount());
+    for (std::size_t b = 0; b < next.barCount(); ++b) restChange[b] = next.restLength[b] - previous.restLength[b];
+    if (!lastStep_ || lastStep_->restChange.size() != restChange.size()) return false;
+    // This edit as a multiple of the last one: rho = <now, last> / <last, last>, and what is left
+    // over must be small.
+    double dot = 0, lastSquared = 0, nowSquared = 0;
+    for (std::size_t b = 0; b < restChange.size(); ++b) {
+        dot += restChange[b] * lastStep_->restChange[b];
+        lastSquared += lastStep_->restChange[b] * lastStep_->restChange[b];
+        nowSquared += restChange[b] * restChange[b];
+    }
+    if (!(lastSquared > 0) || !(nowSquared > 0)) return false;
+    const double rho = dot / lastSquared;
+    double offSquared = 0;
+    for (std::size_t b = 0; b < restChange.size(); ++b) {
+        const double off = restChange[b] - rho * lastStep_->restChange[b];
+        offSquared += off * off;
+    }
+    if (!(rho > 0 && rho <= 2) || offSquared > kRepeatTolerance * kRepeatTolerance * nowSquared) return false;
+    // Kept only when it is nearer the new equilibrium than the shape it starts from.
+    MassSpringSystem predicted = next;
+    for (std::size_t j = 0; j < next.knotCount(); ++j)
+        if (!next.fixed[j]) predicted.position[j] += lastStep_->displacement[j] * rho;
+    if (!(residual(predicted) < residual(next))) return false;
+    next.position = std::move(predicted.position);
+    return true;
+}
+
 void LiveRelaxer::runJob(Job& job) {
     const auto start = Clock::now();
     auto seconds = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
@@ -321,7 +357,11 @@ void LiveRelaxer::runJob(Job& job) {
             // Rows added below go on with the shape above them, and the tensions the start shape
             // had before the edit make the fast path's predictor.
             if (previous_) continueNewRows(*previous_, soft);
-            const std::vector<double> hint = previous_ ? startTensions(*previous_, soft) : std::vector<double>{};
+            std::vector<double> hint = previous_ ? startTensions(*previous_, soft) : std::vector<double>{};
+            // The same edit once more (a drag's next step): go on as far as the last step went.
+            std::vector<double> restChange;
+            const std::vector<Vec3> startPositions = soft.position; // the step is measured from here
+            if (previous_ && extrapolate(*previous_, soft, restChange)) hint = startTensions(soft, soft);
             previous_.reset();
             o.startTensions = hint;
             o.tolerance = options_.previewTolerance;
@@ -356,9 +396,17 @@ void LiveRelaxer::runJob(Job& job) {
             state.residual = r.residual;
             if (r.stopReason == "cancelled" || superseded()) {
                 if (!hasPending()) finish("cancelled", soft.position); // else a newer run follows
+                lastStep_.reset();
             } else {
                 state.converged = r.converged;
                 finish(r.stopReason, soft.position);
+                if (r.converged && !restChange.empty()) {
+                    LastStep step{std::vector<Vec3>(soft.knotCount()), std::move(restChange)};
+                    for (std::size_t j = 0; j < soft.knotCount(); ++j) step.displacement[j] = soft.position[j] - startPositions[j];
+                    lastStep_ = std::move(step);
+                } else {
+                    lastStep_.reset();
+                }
             }
             previous_ = std::move(soft);
             return;
@@ -379,6 +427,7 @@ void LiveRelaxer::runJob(Job& job) {
             publish(std::move(report));
         };
         previous_.reset();
+        lastStep_.reset();
         const RelaxResult r = relaxer_->relax(job.system, o);
         state.steps = r.steps;
         state.residual = r.residual;

@@ -127,6 +127,20 @@ class LiveRelaxer {
     /// for a refine) with the positions it ended at, whose law gives the next preview's tension
     /// hint (startTensions below). Empty before the first run and after an error.
     std::optional<MassSpringSystem> previous_;
+    /// Worker thread only: what the last preview did when it converged after a rest-length edit
+    /// of the shape before it: each knot's displacement, m, and each bar's rest-length change, m.
+    /// The next edit that repeats it (a multiple of the same change, the next step of a drag)
+    /// starts that much further on: a secant predictor, so one Newton iteration corrects it.
+    struct LastStep {
+        std::vector<Vec3> displacement;
+        std::vector<double> restChange;
+    };
+    std::optional<LastStep> lastStep_;
+    /// When `next` repeats the last step's edit of `previous` (see LastStep), moves its free knots
+    /// on by the last step's displacement times the ratio of the edits, if that lowers the residual,
+    /// and returns true. `restChange` gets next's rest lengths minus previous's whenever `next` is a
+    /// rest-length edit of the shape `previous` ended at (else it is left empty).
+    bool extrapolate(const MassSpringSystem& previous, MassSpringSystem& next, std::vector<double>& restChange);
     std::thread worker_; // last: starts after everything it uses exists
 };
 

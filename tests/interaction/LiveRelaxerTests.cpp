@@ -172,9 +172,20 @@ TEST_CASE("live relaxer: after a drag step the preview re-converges in a few New
     CHECK(maxDistance(warm.position, cold.position) < 1e-8);
     CHECK(maxDistance(lengthened->positions, cold.position) < 1e-3);
 
+    // The drag's next step repeats the edit: the preview starts as far on as the last step went
+    // (a secant predictor) and one Newton iteration corrects it.
+    scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt, 0.35 * 1.010}, true);
+    const auto again = previewAndShow(scene.doc, live, 3);
+    INFO("second bar-length step " << again->steps);
+    CHECK(again->converged);
+    CHECK(again->steps == 1);
+    const MassSpringSystem coldAgain = softEquilibrium(scene.doc, {}, 1e-10);
+    const MassSpringSystem warmAgain = softEquilibrium(scene.doc, again->positions, 1e-10);
+    CHECK(maxDistance(warmAgain.position, coldAgain.position) < 1e-8);
+
     // One more row: new knots and bars; the rows above lead the new one.
     scene.doc.execute(SetRowsCommand{scene.net, 21}, true);
-    const auto grown = previewAndShow(scene.doc, live, 3);
+    const auto grown = previewAndShow(scene.doc, live, 4);
     INFO("row step " << grown->steps);
     CHECK(grown->converged);
     CHECK(grown->steps <= 4);
