@@ -317,11 +317,20 @@ bool LiveRelaxer::extrapolate(const MassSpringSystem& previous, MassSpringSystem
     }
     if (!(rho > 0 && rho <= 2) || offSquared > kRepeatTolerance * kRepeatTolerance * nowSquared) return false;
     // Kept only when it is nearer the new equilibrium than the shape it starts from.
-    MassSpringSystem predicted = next;
+    std::vector<Vec3> predicted = next.position;
     for (std::size_t j = 0; j < next.knotCount(); ++j)
-        if (!next.fixed[j]) predicted.position[j] += lastStep_->displacement[j] * rho;
-    if (!(residual(predicted) < residual(next))) return false;
-    next.position = std::move(predicted.position);
+        if (!next.fixed[j]) predicted[j] += lastStep_->displacement[j] * rho;
+    ForceField field(next);
+    std::vector<Vec3> force(next.knotCount());
+    auto worst = [&](const std::vector<Vec3>& at) {
+        field.evaluate(at, force);
+        double r = 0;
+        for (std::size_t j = 0; j < next.knotCount(); ++j)
+            if (!next.fixed[j]) r = std::max(r, field.residualOf(j, force[j]));
+        return r;
+    };
+    if (!(worst(predicted) < worst(next.position))) return false;
+    next.position = std::move(predicted);
     return true;
 }
 
@@ -356,12 +365,14 @@ void LiveRelaxer::runJob(Job& job) {
             scaleStiffness(soft, scale);
             // Rows added below go on with the shape above them, and the tensions the start shape
             // had before the edit make the fast path's predictor.
+            // The same edit once more (a drag's next step) goes on as far as the last step went; its
+            // hint is then the new law's tensions there.
             if (previous_) continueNewRows(*previous_, soft);
-            std::vector<double> hint = previous_ ? startTensions(*previous_, soft) : std::vector<double>{};
-            // The same edit once more (a drag's next step): go on as far as the last step went.
             std::vector<double> restChange;
             const std::vector<Vec3> startPositions = soft.position; // the step is measured from here
-            if (previous_ && extrapolate(*previous_, soft, restChange)) hint = startTensions(soft, soft);
+            const bool repeated = previous_ && extrapolate(*previous_, soft, restChange);
+            const std::vector<double> hint =
+                previous_ ? startTensions(repeated ? soft : *previous_, soft) : std::vector<double>{};
             previous_.reset();
             o.startTensions = hint;
             o.tolerance = options_.previewTolerance;
