@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <unordered_map>
 
 #ifdef __linux__
 #include <sys/resource.h>
@@ -21,7 +22,153 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// Two rest-length edits are the same edit (a drag's steps) when the second, less its best
+// multiple of the first, is below this share of it (Euclidean norms over the bars).
+constexpr double kRepeatTolerance = 1e-3;
+
+/// A knot's first (piece, row, column) as one number; false when it does not fit 24/20/20 bits.
+bool knotKey(const MassSpringSystem& system, std::size_t knot, std::uint64_t& key) {
+    if (system.refStart.size() != system.knotCount() + 1 || system.refStart[knot] == system.refStart[knot + 1])
+        return false;
+    const KnotRef& ref = system.refs[system.refStart[knot]];
+    if (ref.piece.value >= (1u << 24) || ref.row < 0 || ref.row >= (1 << 20) || ref.column < 0 ||
+        ref.column >= (1 << 20))
+        return false;
+    key = std::uint64_t{ref.piece.value} << 40 | std::uint64_t(ref.row) << 20 | std::uint64_t(ref.column);
+    return true;
+}
+
+/// Eq. 3's tension of bar b of `law` (its rest length and stiffness) at length l, N.
+double tensionOf(const MassSpringSystem& law, std::size_t b, double l) {
+    const double extension = l - law.restLength[b];
+    return (extension > 0 ? law.kTension[b] : law.kCompression[b]) * extension;
+}
+
+std::uint64_t pairKey(std::uint32_t a, std::uint32_t b) {
+    return std::uint64_t{std::min(a, b)} << 32 | std::max(a, b);
+}
+
 } // namespace
+
+std::size_t continueNewRows(const MassSpringSystem& previous, MassSpringSystem& next) {
+    // Columns per piece (the largest column + 1) in both systems: only a piece whose column count
+    // is the same has rows to go on from.
+    auto columnsOf = [](const MassSpringSystem& system) {
+        std::unordered_map<std::uint32_t, int> columns;
+        for (const KnotRef& ref : system.refs) columns[ref.piece.value] = std::max(columns[ref.piece.value], ref.column + 1);
+        return columns;
+    };
+    const auto oldColumns = columnsOf(previous), newColumns = columnsOf(next);
+    std::unordered_map<std::uint64_t, std::uint32_t> oldKnot, newKnot;
+    for (std::size_t j = 0; j < previous.knotCount(); ++j) {
+        std::uint64_t key = 0;
+        if (knotKey(previous, j, key)) oldKnot.emplace(key, static_cast<std::uint32_t>(j));
+    }
+    std::vector<std::pair<int, std::uint32_t>> added; // (row, knot) of knots new in `next`
+    for (std::size_t j = 0; j < next.knotCount(); ++j) {
+        std::uint64_t key = 0;
+        if (!knotKey(next, j, key)) continue;
+        newKnot.emplace(key, static_cast<std::uint32_t>(j));
+        const KnotRef& ref = next.refs[next.refStart[j]];
+        const auto old = oldColumns.find(ref.piece.value);
+        if (!next.fixed[j] && !oldKnot.contains(key) && ref.row >= 3 && old != oldColumns.end() &&
+            old->second == newColumns.at(ref.piece.value))
+            added.emplace_back(ref.row, static_cast<std::uint32_t>(j));
+    }
+    std::sort(added.begin(), added.end()); // rows in order: a new row goes on from the new rows above it
+    std::size_t placed = 0;
+    for (const auto& [row, j] : added) {
+        const KnotRef& ref = next.refs[next.refStart[j]];
+        std::uint32_t above[3];
+        bool found = true;
+        for (int i = 0; i < 3 && found; ++i) {
+            const std::uint64_t key = std::uint64_t{ref.piece.value} << 40 | std::uint64_t(row - 1 - i) << 20 | std::uint64_t(ref.column);
+            const auto at = newKnot.find(key);
+            found = at != newKnot.end();
+            if (found) above[i] = at->second;
+        }
+        if (!found) continue;
+        next.position[j] = next.position[above[0]] + next.position[above[1]] - next.position[above[2]];
+        ++placed;
+    }
+    return placed;
+}
+
+std::vector<double> startTensions(const MassSpringSystem& previous, const MassSpringSystem& next) {
+    const std::size_t bars = next.barCount();
+    auto lengthOf = [&](std::size_t b) { return distance(next.position[next.barA[b]], next.position[next.barB[b]]); };
+    std::vector<double> hint(bars, 0.0);
+    if (previous.barA == next.barA && previous.barB == next.barB && previous.knotCount() == next.knotCount()) {
+        for (std::size_t b = 0; b < bars; ++b) hint[b] = tensionOf(previous, b, lengthOf(b)); // same topology
+        return hint;
+    }
+    // Another topology (rows or columns changed): bars are matched by the knots they join.
+    std::unordered_map<std::uint64_t, std::uint32_t> oldKnot;
+    oldKnot.reserve(previous.knotCount());
+    for (std::size_t j = 0; j < previous.knotCount(); ++j) {
+        std::uint64_t key = 0;
+        if (knotKey(previous, j, key)) oldKnot.emplace(key, static_cast<std::uint32_t>(j));
+    }
+    std::unordered_map<std::uint64_t, std::uint32_t> oldBar;
+    oldBar.reserve(previous.barCount());
+    for (std::size_t b = 0; b < previous.barCount(); ++b)
+        oldBar.emplace(pairKey(previous.barA[b], previous.barB[b]), static_cast<std::uint32_t>(b));
+    auto oldOf = [&](std::uint32_t knot, std::uint32_t& old) {
+        std::uint64_t key = 0;
+        if (!knotKey(next, knot, key)) return false;
+        const auto at = oldKnot.find(key);
+        if (at == oldKnot.end()) return false;
+        old = at->second;
+        return true;
+    };
+    std::vector<std::uint8_t> matched(bars, 0);
+    std::vector<double> knotSum(next.knotCount(), 0.0);
+    std::vector<std::uint32_t> knotCount(next.knotCount(), 0);
+    std::size_t matchedCount = 0;
+    for (std::size_t b = 0; b < bars; ++b) {
+        std::uint32_t a = 0, e = 0;
+        if (!oldOf(next.barA[b], a) || !oldOf(next.barB[b], e)) continue;
+        const auto at = oldBar.find(pairKey(a, e));
+        if (at == oldBar.end()) continue;
+        hint[b] = tensionOf(previous, at->second, lengthOf(b));
+        matched[b] = 1;
+        ++matchedCount;
+        if (hint[b] > 0)
+            for (std::uint32_t knot : {next.barA[b], next.barB[b]}) {
+                knotSum[knot] += hint[b];
+                ++knotCount[knot];
+            }
+    }
+    if (2 * matchedCount < bars) return {};
+    // New bars, in passes outward from the old ones (several rows added: the second new row's
+    // bars take the first's); a bar that no pass reaches keeps its own elastic tension.
+    for (bool grew = true; grew;) {
+        grew = false;
+        std::vector<std::pair<std::size_t, double>> reached;
+        for (std::size_t b = 0; b < bars; ++b) {
+            if (matched[b]) continue;
+            double sum = 0;
+            std::uint32_t count = 0;
+            for (std::uint32_t knot : {next.barA[b], next.barB[b]}) {
+                sum += knotSum[knot];
+                count += knotCount[knot];
+            }
+            if (count > 0) reached.emplace_back(b, sum / count);
+        }
+        for (const auto& [b, t] : reached) {
+            hint[b] = t;
+            matched[b] = 1;
+            grew = true;
+            for (std::uint32_t knot : {next.barA[b], next.barB[b]}) {
+                knotSum[knot] += t;
+                ++knotCount[knot];
+            }
+        }
+    }
+    for (std::size_t b = 0; b < bars; ++b)
+        if (!matched[b]) hint[b] = tensionOf(next, b, lengthOf(b));
+    return hint;
+}
 
 void scaleStiffness(MassSpringSystem& system, double scale) {
     for (double& k : system.kTension) k *= scale;
@@ -96,9 +243,12 @@ bool LiveRelaxer::hasPending() const {
 
 void LiveRelaxer::publish(LiveState state) {
     auto shared = std::make_shared<LiveState>(std::move(state));
-    std::lock_guard lock(mutex_);
-    shared->sequence = ++sequence_;
-    latest_ = std::move(shared);
+    {
+        std::lock_guard lock(mutex_);
+        shared->sequence = ++sequence_;
+        latest_ = shared;
+    }
+    if (options_.onPublish) options_.onPublish(*shared);
 }
 
 void LiveRelaxer::setNiceness(int niceness) { niceness_ = std::clamp(niceness, 0, 19); }
@@ -143,6 +293,47 @@ void LiveRelaxer::workerLoop() {
     idle_.notify_all();
 }
 
+bool LiveRelaxer::extrapolate(const MassSpringSystem& previous, MassSpringSystem& next, std::vector<double>& restChange) {
+    // Only an edit of the shape the last run ended at that keeps the bars (masses and k_s = EA / l
+    // follow the rest lengths; an edit of something else as well is caught by the residual test).
+    if (previous.barA != next.barA || previous.barB != next.barB || previous.position != next.position) return false;
+    restChange.resize(next.barCount());
+    for (std::size_t b = 0; b < next.barCount(); ++b) restChange[b] = next.restLength[b] - previous.restLength[b];
+    if (!lastStep_ || lastStep_->restChange.size() != restChange.size()) return false;
+    // This edit as a multiple of the last one: rho = <now, last> / <last, last>, and what is left
+    // over must be small.
+    double dot = 0, lastSquared = 0, nowSquared = 0;
+    for (std::size_t b = 0; b < restChange.size(); ++b) {
+        dot += restChange[b] * lastStep_->restChange[b];
+        lastSquared += lastStep_->restChange[b] * lastStep_->restChange[b];
+        nowSquared += restChange[b] * restChange[b];
+    }
+    if (!(lastSquared > 0) || !(nowSquared > 0)) return false;
+    const double rho = dot / lastSquared;
+    double offSquared = 0;
+    for (std::size_t b = 0; b < restChange.size(); ++b) {
+        const double off = restChange[b] - rho * lastStep_->restChange[b];
+        offSquared += off * off;
+    }
+    if (!(rho > 0 && rho <= 2) || offSquared > kRepeatTolerance * kRepeatTolerance * nowSquared) return false;
+    // Kept only when it is nearer the new equilibrium than the shape it starts from.
+    std::vector<Vec3> predicted = next.position;
+    for (std::size_t j = 0; j < next.knotCount(); ++j)
+        if (!next.fixed[j]) predicted[j] += lastStep_->displacement[j] * rho;
+    ForceField field(next);
+    std::vector<Vec3> force(next.knotCount());
+    auto worst = [&](const std::vector<Vec3>& at) {
+        field.evaluate(at, force);
+        double r = 0;
+        for (std::size_t j = 0; j < next.knotCount(); ++j)
+            if (!next.fixed[j]) r = std::max(r, field.residualOf(j, force[j]));
+        return r;
+    };
+    if (!(worst(predicted) < worst(next.position))) return false;
+    next.position = std::move(predicted);
+    return true;
+}
+
 void LiveRelaxer::runJob(Job& job) {
     const auto start = Clock::now();
     auto seconds = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
@@ -172,14 +363,37 @@ void LiveRelaxer::runJob(Job& job) {
             const double scale = previewScale(job.system, options_.previewStiffnessScale);
             MassSpringSystem soft = job.system;
             scaleStiffness(soft, scale);
+            // Rows added below go on with the shape above them, and the tensions the start shape
+            // had before the edit make the fast path's predictor.
+            // The same edit once more (a drag's next step) goes on as far as the last step went; its
+            // hint is then the new law's tensions there.
+            if (previous_) continueNewRows(*previous_, soft);
+            std::vector<double> restChange;
+            const std::vector<Vec3> startPositions = soft.position; // the step is measured from here
+            const bool repeated = previous_ && extrapolate(*previous_, soft, restChange);
+            const std::vector<double> hint =
+                previous_ ? startTensions(repeated ? soft : *previous_, soft) : std::vector<double>{};
+            previous_.reset();
+            o.startTensions = hint;
             o.tolerance = options_.previewTolerance;
             o.continuation = relaxer_->name() == "fast";
             o.maxSeconds = options_.maxSeconds;
-            o.progressInterval = options_.publishInterval;
+            // Every report reaches the callback, which publishes when waiting for the next one
+            // (about as far off as the last one was) would keep a shape on screen longer than the
+            // publish interval: with a Newton iteration of 25 ms that is every iteration, not
+            // every second one (50 ms) as an interval test alone would give.
+            o.progressInterval = 0;
+            double lastShown = 0, lastReport = 0;
             state.stiffnessScale = scale;
             o.progress = [&](const RelaxProgress& p) {
-                if (p.positions.size() != soft.knotCount())
+                if (p.positions.size() != soft.knotCount() || p.steps == 0) // the start: shown already
                     return;
+                const double now = seconds();
+                const double period = now - lastReport;
+                lastReport = now;
+                if (now - lastShown + period < options_.publishInterval)
+                    return;
+                lastShown = now;
                 LiveState shown = state;
                 shown.stiffnessScale = scale * p.stiffnessScale; // the fast path may start softer
                 shown.residual = p.residual;
@@ -193,10 +407,20 @@ void LiveRelaxer::runJob(Job& job) {
             state.residual = r.residual;
             if (r.stopReason == "cancelled" || superseded()) {
                 if (!hasPending()) finish("cancelled", soft.position); // else a newer run follows
-                return;
+                lastStep_.reset();
+            } else {
+                state.converged = r.converged;
+                finish(r.stopReason, soft.position);
+                if (r.converged && !restChange.empty()) {
+                    LastStep step{std::vector<Vec3>(soft.knotCount()), std::move(restChange)};
+                    for (std::size_t j = 0; j < soft.knotCount(); ++j) step.displacement[j] = soft.position[j] - startPositions[j];
+                    lastStep_ = std::move(step);
+                } else {
+                    lastStep_.reset();
+                }
             }
-            state.converged = r.converged;
-            return finish(r.stopReason, soft.position);
+            previous_ = std::move(soft);
+            return;
         }
         // Refine: the material's stiffness in one run, so the backend keeps its own continuation
         // (restarting it in pieces can lead a slack net to another equilibrium); its progress
@@ -213,17 +437,21 @@ void LiveRelaxer::runJob(Job& job) {
             report.seconds = seconds();
             publish(std::move(report));
         };
+        previous_.reset();
+        lastStep_.reset();
         const RelaxResult r = relaxer_->relax(job.system, o);
         state.steps = r.steps;
         state.residual = r.residual;
         state.stiffnessScale = 1;
         if (r.stopReason == "cancelled" || superseded()) {
             if (!hasPending()) finish("cancelled", job.system.position);
-            return;
+        } else {
+            state.converged = r.converged;
+            finish(r.stopReason, job.system.position);
         }
-        state.converged = r.converged;
-        finish(r.stopReason, job.system.position);
+        previous_ = std::move(job.system);
     } catch (const UserError& e) {
+        previous_.reset();
         state.error = e.what();
         finish("error", job.system.position);
     }

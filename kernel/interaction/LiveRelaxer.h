@@ -11,6 +11,10 @@
 // the material's stiffness in one run (the backend's own stiffness continuation) down to the
 // refine tolerance, publishing its residual as it converges and the positions at the end.
 //
+// Warm starts: each preview passes the backend the tensions its start shape had in the system
+// before the edit (startTensions), which the fast path turns into a predictor step: after a small
+// edit it converges in two or three Newton iterations instead of redoing its soft start stage.
+//
 // Publication: the worker builds a new immutable LiveState and swaps a shared_ptr under a mutex;
 // latest() copies the pointer (the UI reads a state nobody writes).
 
@@ -20,6 +24,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -28,6 +33,8 @@
 #include <vector>
 
 namespace netsculpt {
+
+struct LiveState;
 
 struct LiveRelaxOptions {
     /// Stiffness of the preview relative to the material, in (0, 1]. Raised when it would be so soft
@@ -39,6 +46,9 @@ struct LiveRelaxOptions {
     double publishInterval = 1.0 / 30; ///< s, at least, between two published preview shapes
     std::string backend = "auto";     ///< see makeRelaxer
     int threads = 0;                  ///< RelaxOptions::threads
+    /// Called on the worker thread right after each publication, with the state published (to
+    /// wake a UI, or to time publications). Empty = none. Must not call back into the relaxer.
+    std::function<void(const LiveState&)> onPublish;
 };
 
 enum class LivePhase { Idle, Preview, Refine };
@@ -113,6 +123,24 @@ class LiveRelaxer {
     std::uint64_t sequence_ = 0;
     std::shared_ptr<const LiveState> latest_;
     std::unique_ptr<Relaxer> relaxer_; ///< used by the worker thread only
+    /// Worker thread only: the system of the last run (the preview's soft copy, or the material
+    /// for a refine) with the positions it ended at, whose law gives the next preview's tension
+    /// hint (startTensions below). Empty before the first run and after an error.
+    std::optional<MassSpringSystem> previous_;
+    /// Worker thread only: what the last preview did when it converged after a rest-length edit
+    /// of the shape before it: each knot's displacement, m, and each bar's rest-length change, m.
+    /// The next edit that repeats it (a multiple of the same change, the next step of a drag)
+    /// starts that much further on: a secant predictor, so one Newton iteration corrects it.
+    struct LastStep {
+        std::vector<Vec3> displacement;
+        std::vector<double> restChange;
+    };
+    std::optional<LastStep> lastStep_;
+    /// When `next` repeats the last step's edit of `previous` (see LastStep), moves its free knots
+    /// on by the last step's displacement times the ratio of the edits, if that lowers the residual,
+    /// and returns true. `restChange` gets next's rest lengths minus previous's whenever `next` is a
+    /// rest-length edit of the shape `previous` ended at (else it is left empty).
+    bool extrapolate(const MassSpringSystem& previous, MassSpringSystem& next, std::vector<double>& restChange);
     std::thread worker_; // last: starts after everything it uses exists
 };
 
@@ -120,5 +148,21 @@ class LiveRelaxer {
 double previewScale(const MassSpringSystem& system, double requested);
 /// Every bar's stiffness (tension and compression) times `scale`: the preview's soft copy.
 void scaleStiffness(MassSpringSystem& system, double scale);
+/// Knots of `next` that `previous` did not have, in rows added below a piece whose column count
+/// is unchanged, placed where the rows above them lead: p(r, c) = p(r-1, c) + p(r-2, c) -
+/// p(r-3, c) (rows alternate their half-column shift, so the step two rows up has the new row's).
+/// A hung net is narrower and more stretched at the bottom than the Eq. 2 geometry that the
+/// document's warm start offsets new rows by, which starts their bars up to tens of per cent
+/// from their length; after this they start near the strain of the rows above. Knots matched by
+/// their first (piece, row, column). Returns how many were placed.
+std::size_t continueNewRows(const MassSpringSystem& previous, MassSpringSystem& next);
+/// The warm-start hint for relaxing `next` after `previous` (RelaxOptions::startTensions): for
+/// every bar of `next` that joins the same two (piece, row, column) knots as a bar of
+/// `previous`, that bar's tension under `previous`'s rest length and stiffness at `next`'s
+/// positions (N): the tension the shape had before the edit. A bar new in `next` takes the mean
+/// positive hint of the bars at its knots (new rows carry load like the row above; rows further
+/// down take the hints of the new rows above them), or its own elastic tension when none has one. Empty (no hint) when fewer than half of `next`'s bars
+/// existed in `previous`.
+std::vector<double> startTensions(const MassSpringSystem& previous, const MassSpringSystem& next);
 
 } // namespace netsculpt

@@ -57,6 +57,13 @@ struct RelaxOptions {
     double previewStiffnessScale = 1e-3;
     double continuationFactor = 10; ///< stiffness ratio between stages, finite, > 1
     std::optional<Wind> wind;       ///< a steady wind load; empty = none
+    /// A warm-start hint: the tension of every bar (N; negative = compressed) in the start
+    /// positions under the law of a system they were close to equilibrium in, such as the
+    /// system before an edit of rest lengths, stiffness or rows. Empty = none (the start is judged
+    /// from the positions alone); else one per bar, finite, and it must outlive the call. The
+    /// fast backend then first tries a few Newton iterations seeded with these tensions; others
+    /// ignore it. It changes how the equilibrium is found, never what counts as converged.
+    std::span<const double> startTensions;
 };
 
 struct RelaxResult {

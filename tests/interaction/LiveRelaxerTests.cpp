@@ -4,7 +4,9 @@
 #include "InteractionTestSupport.h"
 
 #include "interaction/LiveRelaxer.h"
+#include "model/Compiler.h"
 #include "physics/Forces.h"
+#include "physics/fast/NewtonRelaxer.h"
 
 #include <algorithm>
 #include <chrono>
@@ -102,6 +104,160 @@ TEST_CASE("live relaxer: a new edit cancels the run in progress and restarts fro
     REQUIRE(live.waitIdle(10));
     CHECK(live.latest()->stopReason == "cancelled");
     CHECK_FALSE(live.latest()->running);
+}
+
+namespace {
+
+/// Previews the document's system, waits for the end of the run and shows its shape (the next
+/// edit warm-starts from it), as the studio does.
+std::shared_ptr<const LiveState> previewAndShow(Document& doc, LiveRelaxer& live, std::uint64_t generation) {
+    live.preview(doc.compiled().system, generation);
+    REQUIRE(live.waitIdle(60));
+    auto state = live.latest();
+    REQUIRE(state);
+    REQUIRE(state->generation == generation);
+    REQUIRE(state->positions.size() == doc.compiled().system.knotCount());
+    doc.adoptPositions(state->positions, false);
+    return state;
+}
+
+/// The preview's soft copy of the document's sculpture, relaxed with the fast path from
+/// `positions` (empty: the Eq. 2 geometry) down to `tolerance`.
+MassSpringSystem softEquilibrium(const Document& doc, const std::vector<Vec3>& positions, double tolerance) {
+    MassSpringSystem soft = compileSculpture(doc.sculpture()).system;
+    if (!positions.empty()) soft.position = positions;
+    scaleStiffness(soft, previewScale(soft, LiveRelaxOptions{}.previewStiffnessScale));
+    RelaxOptions options;
+    options.tolerance = tolerance;
+    REQUIRE(relaxFast(soft, options).converged);
+    return soft;
+}
+
+double maxDistance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+    double worst = 0;
+    for (std::size_t j = 0; j < a.size(); ++j) worst = std::max(worst, distance(a[j], b[j]));
+    return worst;
+}
+
+double maxStrain(const MassSpringSystem& s) {
+    double worst = 0;
+    for (std::size_t b = 0; b < s.barCount(); ++b)
+        worst = std::max(worst, std::abs(distance(s.position[s.barA[b]], s.position[s.barB[b]]) / s.restLength[b] - 1));
+    return worst;
+}
+
+} // namespace
+
+TEST_CASE("live relaxer: after a drag step the preview re-converges in a few Newton iterations, at the "
+          "equilibrium a cold start finds", "[live]") {
+    Scene scene;
+    scene.doc.execute(SetRowsCommand{scene.net, 20});
+    LiveRelaxOptions options;
+    options.backend = "fast";
+    LiveRelaxer live(options);
+    const auto settled = previewAndShow(scene.doc, live, 1);
+    REQUIRE(settled->converged);
+
+    // Bar length +0.5 %: every bar of the soft preview is slack after it (its strains are below
+    // that), which the fast path alone takes for a cold start.
+    scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt, 0.35 * 1.005}, true);
+    const auto lengthened = previewAndShow(scene.doc, live, 2);
+    INFO("first settle " << settled->steps << " Newton iterations, bar-length step " << lengthened->steps);
+    CHECK(lengthened->converged);
+    CHECK(lengthened->residual < options.previewTolerance);
+    CHECK(lengthened->steps <= 3);
+    // The same equilibrium as from the Eq. 2 geometry: both taken on to 1e-10 meet.
+    const MassSpringSystem cold = softEquilibrium(scene.doc, {}, 1e-10);
+    const MassSpringSystem warm = softEquilibrium(scene.doc, lengthened->positions, 1e-10);
+    CHECK(maxDistance(warm.position, cold.position) < 1e-8);
+    CHECK(maxDistance(lengthened->positions, cold.position) < 1e-3);
+
+    // The drag's next step repeats the edit: the preview starts as far on as the last step went
+    // (a secant predictor) and one Newton iteration corrects it.
+    scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt, 0.35 * 1.010}, true);
+    const auto again = previewAndShow(scene.doc, live, 3);
+    INFO("second bar-length step " << again->steps);
+    CHECK(again->converged);
+    CHECK(again->steps == 1);
+    const MassSpringSystem coldAgain = softEquilibrium(scene.doc, {}, 1e-10);
+    const MassSpringSystem warmAgain = softEquilibrium(scene.doc, again->positions, 1e-10);
+    CHECK(maxDistance(warmAgain.position, coldAgain.position) < 1e-8);
+
+    // One more row: new knots and bars; the rows above lead the new one.
+    scene.doc.execute(SetRowsCommand{scene.net, 21}, true);
+    const auto grown = previewAndShow(scene.doc, live, 4);
+    INFO("row step " << grown->steps);
+    CHECK(grown->converged);
+    CHECK(grown->steps <= 4);
+    const MassSpringSystem coldLonger = softEquilibrium(scene.doc, {}, 1e-10);
+    const MassSpringSystem warmLonger = softEquilibrium(scene.doc, grown->positions, 1e-10);
+    CHECK(maxDistance(warmLonger.position, coldLonger.position) < 1e-8);
+}
+
+TEST_CASE("live relaxer: the hint holds the tensions before the edit, and new rows go on from the rows above", "[live]") {
+    Scene scene;
+    scene.doc.execute(SetRowsCommand{scene.net, 12});
+    const MassSpringSystem before = softEquilibrium(scene.doc, {}, 1e-8);
+    scene.doc.adoptPositions(before.position, false);
+
+    // Same bars: each bar's tension under the old law at the carried positions, the old
+    // equilibrium's tensions.
+    scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt, 0.36});
+    MassSpringSystem next = scene.doc.compiled().system;
+    scaleStiffness(next, previewScale(next, LiveRelaxOptions{}.previewStiffnessScale));
+    const std::vector<double> hint = startTensions(before, next);
+    const std::vector<double> old = barTensions(before);
+    REQUIRE(hint.size() == old.size());
+    for (std::size_t b = 0; b < hint.size(); ++b) CHECK(hint[b] == Approx(old[b]).epsilon(1e-12));
+    for (double t : barTensions(next)) CHECK(t < 0); // the new law has them all slack
+
+    // Two more rows: the document offsets them by the Eq. 2 geometry; continueNewRows places them
+    // on from the hung rows above, close to their length.
+    scene.doc.undo();
+    scene.doc.adoptPositions(before.position, false);
+    scene.doc.execute(SetRowsCommand{scene.net, 14});
+    MassSpringSystem longer = scene.doc.compiled().system;
+    scaleStiffness(longer, previewScale(longer, LiveRelaxOptions{}.previewStiffnessScale));
+    const double carriedStrain = maxStrain(longer);
+    CHECK(continueNewRows(before, longer) == 2 * 24);
+    INFO("largest strain: carried " << carriedStrain << ", continued " << maxStrain(longer));
+    CHECK(carriedStrain > 0.1);
+    CHECK(maxStrain(longer) < 0.02);
+    const std::vector<double> grownHint = startTensions(before, longer);
+    REQUIRE(grownHint.size() == longer.barCount());
+    std::size_t newBars = 0;
+    for (std::size_t b = 0; b < longer.barCount(); ++b) {
+        CHECK(std::isfinite(grownHint[b]));
+        const int row = std::max(longer.refs[longer.refStart[longer.barA[b]]].row, longer.refs[longer.refStart[longer.barB[b]]].row);
+        if (row >= 12) { // a new bar carries load like the bars above it
+            ++newBars;
+            CHECK(grownHint[b] > 0);
+        }
+    }
+    CHECK(newBars == 2 * 2 * 24);
+}
+
+TEST_CASE("live relaxer: a preview publishes every iteration's shape with a zero publish interval, only the "
+          "end with a long one", "[live]") {
+    Scene scene;
+    scene.doc.execute(SetRowsCommand{scene.net, 20});
+    auto publications = [&](double interval) {
+        std::atomic<int> running{0};
+        LiveRelaxOptions options;
+        options.backend = "fast";
+        options.publishInterval = interval;
+        options.onPublish = [&](const LiveState& state) { running += state.running ? 1 : 0; };
+        LiveRelaxer live(options);
+        live.preview(scene.doc.compiled().system, 1);
+        REQUIRE(live.waitIdle(60));
+        REQUIRE(live.latest()->converged);
+        return std::make_pair(running.load(), live.latest()->steps);
+    };
+    const auto [every, steps] = publications(0.0);
+    INFO(every << " shapes published while running, " << steps << " Newton iterations");
+    CHECK(steps > 3);
+    CHECK(every >= steps);
+    CHECK(publications(1e6).first == 0);
 }
 
 TEST_CASE("live relaxer: a system that cannot be relaxed reports an error", "[live]") {

@@ -266,6 +266,102 @@ TEST_CASE("fast: warm start after an edit takes fewer iterations than from scrat
     CHECK(maxDistance(longer.system.position, longerScratch.position) < 1e-6);
 }
 
+namespace {
+
+/// The tensions of `next`'s bars at its positions under the law (rest lengths, stiffness) of
+/// `before`, which has the same bars: what LiveRelaxer hands the backend after an edit.
+std::vector<double> tensionsBefore(const MassSpringSystem& before, const MassSpringSystem& next) {
+    MassSpringSystem law = before;
+    law.position = next.position;
+    return barTensions(law);
+}
+
+} // namespace
+
+TEST_CASE("fast: a start hinted with the tensions before a bar-length edit converges in two or "
+          "three iterations to the cold start's equilibrium",
+          "[fast]") {
+    // A tube at a soft stiffness (the studio's preview scale of the rope): at its equilibrium the
+    // bars are stretched by less than the 0.5 % of a drag step, so after the step every bar is
+    // slack and the strain test sees a cold start.
+    Sculpture s = tube(20, 40, 2e3);
+    const PieceId piece = s.pieces.begin()->first;
+    CompiledSculpture before = compileSculpture(s);
+    FastRelaxer relaxer;
+    REQUIRE(relaxer.relax(before.system, RelaxOptions{}).converged);
+
+    auto [ignored, after] = applyAtomically(s, [&](Sculpture& m) {
+        setBarLength(m, piece, std::nullopt, 0.1 * 1.005);
+        return 0;
+    });
+    const MassSpringSystem cold = after.system;
+    REQUIRE(carryPositions(before, after) > 0);
+    const MassSpringSystem carried = after.system;
+    std::size_t slack = 0;
+    for (double t : barTensions(carried))
+        slack += t < 0 ? 1 : 0;
+    CHECK(slack > carried.barCount() / 2);
+
+    // Without the hint: the soft start stage again.
+    MassSpringSystem unhinted = carried;
+    const RelaxResult plain = relaxer.relax(unhinted, RelaxOptions{});
+    REQUIRE(plain.converged);
+    const NewtonStatistics plainStats = relaxer.statistics();
+    CHECK(plainStats.softIterations > 0);
+
+    const std::vector<double> hint = tensionsBefore(before.system, carried);
+    RelaxOptions options;
+    options.startTensions = hint;
+    MassSpringSystem hinted = carried;
+    const RelaxResult warm = relaxer.relax(hinted, options);
+    REQUIRE(warm.converged);
+    CHECK(warm.residual < kTolerance);
+    const NewtonStatistics stats = relaxer.statistics();
+    INFO("hinted " << warm.steps << " iterations (" << stats.hintIterations << " hinted), unhinted "
+                   << plain.steps);
+    CHECK(stats.reusedAnalysis);
+    CHECK(stats.softIterations == 0);
+    CHECK(stats.hintIterations >= 1);
+    CHECK(warm.steps <= 3);
+    CHECK(warm.steps < plain.steps);
+
+    // The same equilibrium as a relaxation from the Eq. 2 geometry, and the same bits on a rerun.
+    MassSpringSystem scratch = cold;
+    REQUIRE(relaxFast(scratch).converged);
+    CHECK(maxDistance(hinted.position, scratch.position) < 1e-6);
+    CHECK(maxDistance(unhinted.position, scratch.position) < 1e-6);
+    MassSpringSystem again = carried;
+    FastRelaxer other;
+    REQUIRE(other.relax(again, options).converged);
+    CHECK(sameBits(again.position, hinted.position));
+}
+
+TEST_CASE("fast: a hint that does not fit the start still converges, and a hint of the wrong "
+          "size is refused",
+          "[fast]") {
+    Sculpture s = tube(12, 24, 2e3);
+    MassSpringSystem scratch = compileSculpture(s).system;
+    REQUIRE(relaxFast(scratch).converged);
+    MassSpringSystem start = compileSculpture(s).system;
+    // Compressed everywhere: the hinted iterations go nowhere and the run goes on as a cold one.
+    const std::vector<double> wrong(start.barCount(), -1.0);
+    RelaxOptions options;
+    options.startTensions = wrong;
+    FastRelaxer relaxer;
+    const RelaxResult result = relaxer.relax(start, options);
+    REQUIRE(result.converged);
+    CHECK(residual(start) < kTolerance);
+    CHECK(maxDistance(start.position, scratch.position) < 1e-6);
+
+    const std::vector<double> short_(start.barCount() - 1, 1.0);
+    options.startTensions = short_;
+    CHECK_THROWS_WITH(relaxer.relax(start, options), Catch::Contains("startTensions has"));
+    std::vector<double> notFinite(start.barCount(), 1.0);
+    notFinite[3] = std::nan("");
+    options.startTensions = notFinite;
+    CHECK_THROWS_WITH(relaxer.relax(start, options), Catch::Contains("startTensions[3]"));
+}
+
 TEST_CASE("fast: deterministic on reruns and with 1 or 2 threads", "[fast]") {
     const MassSpringSystem start = compileSculpture(slackSheet(12, 16, 2e5)).system;
     auto run = [&](int threads) {

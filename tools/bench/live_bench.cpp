@@ -4,7 +4,9 @@
 // from the shape shown), the LiveRelaxer (kernel/interaction/LiveRelaxer.h, the studio's options:
 // soft preview stiffness, tolerance 1e-3, the default backend) re-relaxes, and the latency is the
 // wall time from the edit to the converged preview shape being published. At 30 frames per second
-// a frame lasts 33 ms.
+// a frame lasts 33 ms. It also times every shape the LiveRelaxer publishes (its onPublish hook):
+// the interval between two shapes of one run is how smoothly the net settles on screen while a
+// longer re-relaxation goes on (the first settle from the Eq. 2 start is the long one).
 //
 // Drags (each step one command, one after the other):
 //   bar length   +0.5 % per step (same topology: the fast backend reuses its analysis)
@@ -24,6 +26,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -47,6 +50,52 @@ std::shared_ptr<const LiveState> awaitRun(const LiveRelaxer& live, std::uint64_t
             return state;
     }
 }
+
+/// When the shapes of each run were published (LiveState::seconds, from the run's start).
+class PublicationLog {
+  public:
+    /// A shape counts once: the end of a run publishes again the positions of its last report.
+    void record(const LiveState& state) {
+        if (state.positions.empty())
+            return;
+        std::lock_guard lock(mutex_);
+        if (!times_.empty() && times_.back().generation == state.generation &&
+            times_.back().steps == state.steps)
+            return;
+        times_.push_back({state.generation, state.steps, state.seconds});
+    }
+    /// Publication times of one run, in order.
+    std::vector<double> of(std::uint64_t generation) const {
+        std::lock_guard lock(mutex_);
+        std::vector<double> times;
+        for (const Entry& entry : times_)
+            if (entry.generation == generation)
+                times.push_back(entry.seconds);
+        return times;
+    }
+
+  private:
+    struct Entry {
+        std::uint64_t generation;
+        std::int64_t steps;
+        double seconds;
+    };
+    mutable std::mutex mutex_;
+    std::vector<Entry> times_;
+};
+
+/// When the shapes of runs came: the first after the run's start, the intervals after it.
+struct Publications {
+    std::vector<double> first; ///< per run, s from its start to its first shape
+    std::vector<double> gaps;  ///< s between consecutive shapes of one run
+    void add(const std::vector<double>& times) {
+        if (times.empty())
+            return;
+        first.push_back(times.front());
+        for (std::size_t i = 1; i < times.size(); ++i)
+            gaps.push_back(times[i] - times[i - 1]);
+    }
+};
 
 struct StepTiming {
     double editSeconds = 0;    ///< the command: validation, recompilation, warm start
@@ -76,15 +125,29 @@ double percentile(std::vector<double> values, double p) {
     return values[i];
 }
 
-void runDrag(const char* name, Document& doc, LiveRelaxer& live, std::uint64_t& generation,
-             int steps, const std::function<Command(int)>& commandAt) {
+void printPublications(const char* what, const Publications& p) {
+    if (p.first.empty())
+        return;
+    std::printf("  %s: %zu run(s), %zu shapes; first shape after the run's start median %.1f ms",
+                what, p.first.size(), p.first.size() + p.gaps.size(), 1e3 * percentile(p.first, 0.5));
+    if (!p.gaps.empty())
+        std::printf(", then one every %.1f ms (median; max %.1f ms, %.0f shapes/s)",
+                    1e3 * percentile(p.gaps, 0.5), 1e3 * *std::max_element(p.gaps.begin(), p.gaps.end()),
+                    1 / percentile(p.gaps, 0.5));
+    std::printf("\n");
+}
+
+void runDrag(const char* name, Document& doc, LiveRelaxer& live, const PublicationLog& log,
+             std::uint64_t& generation, int steps, const std::function<Command(int)>& commandAt) {
     std::vector<double> edit, relax, total, iterations;
+    Publications shown;
     int converged = 0, withinFrame = 0;
     for (int step = 1; step <= steps; ++step) {
         const auto t0 = Clock::now();
         doc.execute(commandAt(step), /*merge=*/true);
         const double editSeconds = secondsSince(t0);
         const StepTiming timing = previewNow(doc, live, ++generation);
+        shown.add(log.of(generation));
         edit.push_back(editSeconds);
         relax.push_back(timing.relaxSeconds);
         iterations.push_back(static_cast<double>(timing.steps));
@@ -99,6 +162,7 @@ void runDrag(const char* name, Document& doc, LiveRelaxer& live, std::uint64_t& 
                 name, steps, 1e3 * percentile(edit, 0.5), 1e3 * percentile(relax, 0.5),
                 1e3 * *std::max_element(relax.begin(), relax.end()), 1e3 * percentile(total, 0.5),
                 1e3 * percentile(total, 0.9), withinFrame, steps, converged, steps, percentile(iterations, 0.5));
+    printPublications("shapes shown", shown);
 }
 
 } // namespace
@@ -137,18 +201,23 @@ int main(int argc, char** argv) {
                     system.knotCount(), system.barCount(), start.rows, start.columns,
                     options.backend.c_str(), previewScale(system, options.previewStiffnessScale),
                     options.previewTolerance);
+        PublicationLog log;
+        options.onPublish = [&log](const LiveState& state) { log.record(state); };
         LiveRelaxer live(options);
         std::uint64_t generation = 1;
         const StepTiming settle = previewNow(doc, live, generation);
         std::printf("first settle from the Eq. 2 start: %.2f s (%s, %lld steps)\n",
                     settle.relaxSeconds, settle.converged ? "converged" : "not converged",
                     static_cast<long long>(settle.steps));
+        Publications settling;
+        settling.add(log.of(generation));
+        printPublications("shapes shown while it settles", settling);
         const double bar = start.bar.at(0);
-        runDrag("bar length", doc, live, generation, steps, [&](int step) -> Command {
+        runDrag("bar length", doc, live, log, generation, steps, [&](int step) -> Command {
             return SetBarLengthCommand{piece, std::nullopt, std::nullopt, bar * (1 + 0.005 * step)};
         });
         const int rows = doc.sculpture().pieces.at(piece).rows;
-        runDrag("rows", doc, live, generation, std::max(1, steps / 2),
+        runDrag("rows", doc, live, log, generation, std::max(1, steps / 2),
                 [&](int step) -> Command { return SetRowsCommand{piece, rows + step}; });
     } catch (const std::exception& e) {
         std::fprintf(stderr, "netsculpt-bench-live: %s\n", e.what());

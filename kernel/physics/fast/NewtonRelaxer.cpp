@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <string>
 #include <thread>
 
@@ -63,6 +64,10 @@ constexpr double kWarmMaxStrain = 0.05;
 // hundred times the knots' weights (rows added below a relaxed net are not; their weight, not
 // yet carried, is a cold start in disguise).
 constexpr double kWarmMaxResidual = 100;
+// A start with a tension hint (RelaxOptions::startTensions) first gets at most this many mixed
+// Newton iterations seeded with the hint (see NewtonRun::hintedStart); a small edit needs two or
+// three, and a start the hint does not fit goes on to the usual decision after them.
+constexpr int kHintIterations = 6;
 // Line search: Armijo's sufficient decrease, at most kMaxBacktracks halvings (safeguarded
 // quadratic interpolation).
 constexpr double kArmijo = 1e-4;
@@ -206,6 +211,7 @@ class NewtonRun {
     double energyChange(double alpha);
     double meritOf(const std::vector<Vec3>& at);
     void takeStep(double alpha, bool mixed);
+    void hintedStart(double tolerance);
     bool stopRequested();
     void keepIfBest();
     void report(bool force);
@@ -498,6 +504,76 @@ void NewtonRun::keepIfBest() {
     bestX_ = x_;
 }
 
+/// A start with a tension hint: mixed Newton iterations at the run's scale whose tension
+/// estimates start from the hint, and in which a bar that the hint has taut keeps its tension
+/// stiffness when it is shorter than its rest length (after an edit that lengthens bars, a bar
+/// that carried load is slack until the net has dropped; with k_c the linear model would stretch
+/// it back a hundred times too far). The first iteration is then the tangent predictor of the edit
+/// (the linear response of the hinted state to the new rest lengths, stiffnesses and loads) and
+/// the next ones converge quadratically, as long as the bars the hint has taut are taut at the
+/// equilibrium. At most kHintIterations, down to `tolerance`; the state reached is kept only when
+/// its residual under the material's law is below the start's, and the run goes on from there
+/// (the usual decision: a start near the equilibrium is warm).
+void NewtonRun::hintedStart(double tolerance) {
+    const std::span<const double> hint = options_.startTensions;
+    const std::vector<Vec3> start = x_;
+    const double startResidual = residual_;
+    MassSpringSystem hinted = system_;
+    for (std::size_t b = 0; b < system_.barCount(); ++b) {
+        tension_[b] = hint[b];
+        if (hint[b] > 0)
+            hinted.kCompression[b] = std::max(system_.kCompression[b], system_.kTension[b]);
+    }
+    kCompression_ = hinted.kCompression;
+    field_ = ForceField(hinted);
+    field_.setLoad(options_.wind, scale_);
+    residual_ = evaluate(x_);
+    double best = residual_;
+    shift_ = kFinalMinShift;
+    const std::int64_t first = steps_;
+    while (steps_ - first < kHintIterations && !(residual_ < tolerance) && !stopRequested()) {
+        report(false);
+        assemble(true, false);
+        bool factored = factorize();
+        while (!factored && shift_ < kMaxShift) {
+            shift_ = std::max(shift_ * 10, kFailShift);
+            factored = factorize();
+        }
+        ++steps_;
+        if (!factored)
+            break;
+        solve();
+        double alpha = 1;
+        bool accepted = false;
+        for (int k = 0; k < kMaxBacktracks && !accepted; ++k, alpha *= 0.5) {
+            for (std::uint32_t j : analysis_.freeKnots)
+                trial_[j] = x_[j] + step_[j] * alpha;
+            accepted = evaluate(trial_) < kMixedGrowth * best;
+            if (accepted)
+                break;
+        }
+        if (!accepted) {
+            shift_ = std::max(shift_ * 10, kFailShift);
+            residual_ = evaluate(x_);
+            continue;
+        }
+        takeStep(alpha, true);
+        residual_ = evaluate(x_);
+        if (alpha == 1.0)
+            shift_ = std::max(shift_ * 0.1, kFinalMinShift);
+        best = std::min(best, residual_);
+    }
+    stats_.hintIterations = steps_ - first;
+    // Back to the material's law (setCompression(0) rebuilds the field).
+    compressionBlend_ = -1;
+    setCompression(0.0);
+    residual_ = evaluate(x_);
+    if (!(residual_ < startResidual)) {
+        x_ = start;
+        residual_ = evaluate(x_);
+    }
+}
+
 bool NewtonRun::stopRequested() {
     if (options_.cancel && options_.cancel->load(std::memory_order_relaxed))
         stopReason_ = "cancelled";
@@ -529,6 +605,9 @@ RelaxResult NewtonRun::run() {
     const double tolerance = options_.tolerance;
     setScale(1.0);
     residual_ = evaluate(x_);
+    if (options_.startTensions.size() == bars && !analysis_.freeKnots.empty() &&
+        !(residual_ < tolerance))
+        hintedStart(tolerance);
 
     // Stages: an optional soft one (cold start), then the material's stiffness.
     double softScale = 1.0;
@@ -781,6 +860,17 @@ RelaxResult FastRelaxer::relax(MassSpringSystem& system, const RelaxOptions& opt
             throw UserError("mass-spring system: knot " + std::to_string(j) +
                             " has a non-finite position");
         fixedCount += system.fixed[j] ? 1 : 0;
+    }
+    if (!options.startTensions.empty()) {
+        if (options.startTensions.size() != system.barCount())
+            throw UserError("relax: startTensions has " +
+                            std::to_string(options.startTensions.size()) +
+                            " values; expected none or one per bar (" +
+                            std::to_string(system.barCount()) + ")");
+        for (std::size_t b = 0; b < system.barCount(); ++b)
+            if (!std::isfinite(options.startTensions[b]))
+                throw UserError("relax: startTensions[" + std::to_string(b) +
+                                "] is not finite; expected a tension in N");
     }
     if (fixedCount == 0 && knots > 0)
         throw UserError("mass-spring system: no knot is fixed, so the net has no equilibrium "

@@ -29,6 +29,10 @@
 //   k (l - l_eq) at the new positions, so a step that rotates a stiff bar is not punished for
 //   the second-order stretch it would cause. If it stalls it falls back to the energy line
 //   search. A warm start (most bars already taut) goes to the material's stiffness directly.
+// - A start with a tension hint (RelaxOptions::startTensions: the tensions the start shape had
+//   before an edit) first takes up to six mixed iterations seeded with it, in which a bar the
+//   hint has taut keeps k_s when slack: the first is the edit's tangent predictor, and after a
+//   small edit (a drag step) two or three reach the tolerance. Otherwise the run goes on as above.
 // - Slack nets (bars in compression at the first soft stage's equilibrium): the energy stages
 //   after the first add a second, trust-region-driven Levenberg shift scaled by the knots'
 //   weights per bar length (the soft modes of slack parts otherwise make the line search cut
@@ -62,7 +66,7 @@
 //
 // Options: tolerance, maxSeconds, maxSteps (a step = one Newton iteration, i.e. one
 // factorization and solve), threads, cancel, progress, progressInterval, continuation (false:
-// no soft stage) and wind are honoured; previewStiffnessScale and continuationFactor are RK4's
+// no soft stage), startTensions and wind are honoured; previewStiffnessScale and continuationFactor are RK4's
 // and ignored (the soft stage's scale comes from the load, see kSoftLoadFactor).
 
 #include "physics/Relaxer.h"
@@ -79,6 +83,7 @@ struct NewtonAnalysis; // the topology-dependent part of a run (NewtonRelaxer.cp
 /// What a FastRelaxer run did beyond RelaxResult, for tests and benchmarks.
 struct NewtonStatistics {
     std::int64_t softIterations = 0; ///< Newton iterations before the material's stiffness (0: none)
+    std::int64_t hintIterations = 0; ///< iterations seeded with RelaxOptions::startTensions (0: none)
     std::int64_t iterations = 0;     ///< all Newton iterations (= RelaxResult::steps)
     std::int64_t factorizations = 0; ///< numeric factorizations, failed ones included
     std::int64_t failedFactorizations = 0; ///< not positive definite (then the shift grows)
