@@ -51,6 +51,8 @@ std::uint64_t pairKey(std::uint32_t a, std::uint32_t b) {
 } // namespace
 
 std::size_t continueNewRows(const MassSpringSystem& previous, MassSpringSystem& next) {
+    // The same knots (a drag that keeps the topology): none is new.
+    if (previous.refStart == next.refStart && previous.refs == next.refs) return 0;
     // Columns per piece (the largest column + 1) in both systems: only a piece whose column count
     // is the same has rows to go on from.
     auto columnsOf = [](const MassSpringSystem& system) {

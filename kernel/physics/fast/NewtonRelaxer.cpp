@@ -146,9 +146,19 @@ struct NewtonAnalysis {
     }
 
     /// `checked`: the system's force field (built, so validated, by the caller).
-    NewtonAnalysis(const MassSpringSystem& system, ForceField&& checked)
-        : fixed(system.fixed), barA(system.barA), barB(system.barB), field(std::move(checked)) {
+    NewtonAnalysis(const MassSpringSystem& system, ForceField&& checked) : field(std::move(checked)) {
+        analyse(system);
+    }
+
+    /// Analyses `system`'s topology (its force field is already in `field`), keeping the
+    /// storage of the previous one where it is large enough (the factor's among it).
+    void analyse(const MassSpringSystem& system) {
+        fixed = system.fixed;
+        barA = system.barA;
+        barB = system.barB;
         const std::size_t knots = system.knotCount(), bars = system.barCount();
+        freeKnots.clear();
+        pairs.clear();
         freeIndex.assign(knots, -1);
         for (std::size_t j = 0; j < knots; ++j)
             if (!fixed[j]) {
@@ -192,8 +202,8 @@ struct NewtonAnalysis {
             coordinates[f] = {p.x, p.y, p.z};
         }
         cholesky.analyse(freeKnots.size(), pairs, coordinates);
-        barBlock.assign(9 * bars);
-        values.assign(9 * (freeKnots.size() + pairs.size()));
+        barBlock.allocate(9 * bars);
+        values.allocate(9 * (freeKnots.size() + pairs.size()));
     }
 };
 
@@ -902,8 +912,18 @@ RelaxResult FastRelaxer::relax(MassSpringSystem& system, const RelaxOptions& opt
         statistics_.reusedAnalysis = true;
     } else {
         const auto t0 = Clock::now();
-        analysis_.reset();
-        analysis_ = std::make_unique<NewtonAnalysis>(system, std::move(*fresh));
+        if (analysis_) {
+            // A new topology (rows added, say): the previous one's storage is reused.
+            try {
+                analysis_->field = std::move(*fresh);
+                analysis_->analyse(system);
+            } catch (...) {
+                analysis_.reset();
+                throw;
+            }
+        } else {
+            analysis_ = std::make_unique<NewtonAnalysis>(system, std::move(*fresh));
+        }
         statistics_.analysisSeconds = secondsSince(t0);
     }
     statistics_.factorFlops = analysis_->cholesky.factorFlops();
