@@ -51,6 +51,8 @@ std::uint64_t pairKey(std::uint32_t a, std::uint32_t b) {
 } // namespace
 
 std::size_t continueNewRows(const MassSpringSystem& previous, MassSpringSystem& next) {
+    // The same knots (a drag that keeps the topology): none is new.
+    if (previous.refStart == next.refStart && previous.refs == next.refs) return 0;
     // Columns per piece (the largest column + 1) in both systems: only a piece whose column count
     // is the same has rows to go on from.
     auto columnsOf = [](const MassSpringSystem& system) {
@@ -316,21 +318,29 @@ bool LiveRelaxer::extrapolate(const MassSpringSystem& previous, MassSpringSystem
         offSquared += off * off;
     }
     if (!(rho > 0 && rho <= 2) || offSquared > kRepeatTolerance * kRepeatTolerance * nowSquared) return false;
-    // Kept only when it is nearer the new equilibrium than the shape it starts from.
-    std::vector<Vec3> predicted = next.position;
+    // Kept only when it is nearer the new equilibrium than the shape it starts from. The force
+    // field of the drag's topology is kept from one step to the next (only the law changes).
+    if (residualCheck_ && residualCheck_->barA == next.barA && residualCheck_->barB == next.barB &&
+        residualCheck_->fixed == next.fixed) {
+        residualCheck_->field.setLaw(next);
+    } else {
+        residualCheck_.reset();
+        residualCheck_.emplace(ResidualCheck{ForceField(next), next.barA, next.barB, next.fixed, {}, {}});
+    }
+    ResidualCheck& check = *residualCheck_;
+    check.predicted.assign(next.position.begin(), next.position.end());
     for (std::size_t j = 0; j < next.knotCount(); ++j)
-        if (!next.fixed[j]) predicted[j] += lastStep_->displacement[j] * rho;
-    ForceField field(next);
-    std::vector<Vec3> force(next.knotCount());
+        if (!next.fixed[j]) check.predicted[j] += lastStep_->displacement[j] * rho;
+    check.force.resize(next.knotCount());
     auto worst = [&](const std::vector<Vec3>& at) {
-        field.evaluate(at, force);
+        check.field.evaluate(at, check.force);
         double r = 0;
         for (std::size_t j = 0; j < next.knotCount(); ++j)
-            if (!next.fixed[j]) r = std::max(r, field.residualOf(j, force[j]));
+            if (!next.fixed[j]) r = std::max(r, check.field.residualOf(j, check.force[j]));
         return r;
     };
-    if (!(worst(predicted) < worst(next.position))) return false;
-    next.position = std::move(predicted);
+    if (!(worst(check.predicted) < worst(next.position))) return false;
+    next.position.swap(check.predicted);
     return true;
 }
 

@@ -18,6 +18,7 @@
 // Publication: the worker builds a new immutable LiveState and swaps a shared_ptr under a mutex;
 // latest() copies the pointer (the UI reads a state nobody writes).
 
+#include "physics/Forces.h"
 #include "physics/MassSpringSystem.h"
 #include "physics/Relaxer.h"
 
@@ -141,6 +142,16 @@ class LiveRelaxer {
     /// and returns true. `restChange` gets next's rest lengths minus previous's whenever `next` is a
     /// rest-length edit of the shape `previous` ended at (else it is left empty).
     bool extrapolate(const MassSpringSystem& previous, MassSpringSystem& next, std::vector<double>& restChange);
+    /// Worker thread only: extrapolate()'s residual test, kept for the topology of its last use
+    /// (a drag's steps share it; only the law is updated): the force field, the bars and fixed
+    /// flags it was built for, and scratch.
+    struct ResidualCheck {
+        ForceField field;
+        std::vector<std::uint32_t> barA, barB;
+        std::vector<std::uint8_t> fixed;
+        std::vector<Vec3> predicted, force;
+    };
+    std::optional<ResidualCheck> residualCheck_;
     std::thread worker_; // last: starts after everything it uses exists
 };
 

@@ -175,20 +175,47 @@ Vec3 validatedWindDirection(const Wind& wind) {
     return wind.direction / length;
 }
 
-ForceField::ForceField(const MassSpringSystem& system) {
-    checkSizes(system);
-    const std::size_t knots = system.knotCount(), bars = system.barCount();
+namespace {
+
+/// |g| of `system`, validated.
+double gravityOf(const MassSpringSystem& system) {
     const double g = system.gravity.norm();
     if (!system.gravity.isFinite() || !(g > 0))
         badSystem("gravity must be finite and non-zero, got |g| = " + formatNumber(g));
+    return g;
+}
+
+void checkMass(const MassSpringSystem& system, std::size_t j) {
+    if (!positiveFinite(system.mass[j]))
+        badSystem("knot " + std::to_string(j) + " has mass " + formatNumber(system.mass[j]) +
+                  " kg; a knot mass must be finite and > 0");
+}
+
+/// Bar b's rest length and stiffnesses.
+void checkBarLaw(const MassSpringSystem& system, std::size_t b) {
+    if (!positiveFinite(system.restLength[b]))
+        badSystem("bar " + std::to_string(b) + " has rest length " +
+                  formatNumber(system.restLength[b]) + " m; must be finite and > 0");
+    if (!positiveFinite(system.kTension[b]))
+        badSystem("bar " + std::to_string(b) + " has kTension " +
+                  formatNumber(system.kTension[b]) + " N/m; must be finite and > 0");
+    if (!std::isfinite(system.kCompression[b]) || system.kCompression[b] < 0)
+        badSystem("bar " + std::to_string(b) + " has kCompression " +
+                  formatNumber(system.kCompression[b]) + " N/m; must be finite and >= 0");
+}
+
+} // namespace
+
+ForceField::ForceField(const MassSpringSystem& system) {
+    checkSizes(system);
+    const std::size_t knots = system.knotCount(), bars = system.barCount();
+    const double g = gravityOf(system);
 
     weight_.resize(knots);
     inverseWeight_.resize(knots);
     fixed_ = system.fixed;
     for (std::size_t j = 0; j < knots; ++j) {
-        if (!positiveFinite(system.mass[j]))
-            badSystem("knot " + std::to_string(j) + " has mass " + formatNumber(system.mass[j]) +
-                      " kg; a knot mass must be finite and > 0");
+        checkMass(system, j);
         weight_[j] = system.gravity * system.mass[j];
         inverseWeight_[j] = 1.0 / (system.mass[j] * g);
     }
@@ -204,15 +231,7 @@ ForceField::ForceField(const MassSpringSystem& system) {
             badSystem("bar " + std::to_string(b) + " joins knots " + std::to_string(a) + " and " +
                       std::to_string(e) + "; expected two different knots below " +
                       std::to_string(knots));
-        if (!positiveFinite(system.restLength[b]))
-            badSystem("bar " + std::to_string(b) + " has rest length " +
-                      formatNumber(system.restLength[b]) + " m; must be finite and > 0");
-        if (!positiveFinite(system.kTension[b]))
-            badSystem("bar " + std::to_string(b) + " has kTension " +
-                      formatNumber(system.kTension[b]) + " N/m; must be finite and > 0");
-        if (!std::isfinite(system.kCompression[b]) || system.kCompression[b] < 0)
-            badSystem("bar " + std::to_string(b) + " has kCompression " +
-                      formatNumber(system.kCompression[b]) + " N/m; must be finite and >= 0");
+        checkBarLaw(system, b);
         endOffsets_[2 * b] = a * std::uint32_t{sizeof(Vec3)};
         endOffsets_[2 * b + 1] = e * std::uint32_t{sizeof(Vec3)};
         ++degree[a];
@@ -259,6 +278,30 @@ ForceField::ForceField(const MassSpringSystem& system) {
         largest = std::max({largest, system.barA[b] + 1, system.barB[b] + 1});
         knotsBelow_[b] = largest;
     }
+}
+
+void ForceField::setLaw(const MassSpringSystem& system) {
+    checkSizes(system);
+    const std::size_t knots = system.knotCount(), bars = system.barCount();
+    assert(knots == knotCount() && bars == barCount());
+    const double g = gravityOf(system);
+    for (std::size_t j = 0; j < knots; ++j)
+        checkMass(system, j);
+    for (std::size_t b = 0; b < bars; ++b)
+        checkBarLaw(system, b);
+    // Validated: the field changes only now (a refused law leaves the previous one).
+    for (std::size_t j = 0; j < knots; ++j) {
+        weight_[j] = system.gravity * system.mass[j];
+        inverseWeight_[j] = 1.0 / (system.mass[j] * g);
+    }
+    std::copy(system.restLength.begin(), system.restLength.end(), restLength_.begin());
+    std::copy(system.kTension.begin(), system.kTension.end(), kTension_.begin());
+    std::copy(system.kCompression.begin(), system.kCompression.end(), kCompression_.begin());
+}
+
+void ForceField::setCompressionStiffness(std::span<const double> kCompression) {
+    assert(kCompression.size() == barCount());
+    std::copy(kCompression.begin(), kCompression.end(), kCompression_.begin());
 }
 
 void ForceField::setLoad(const std::optional<Wind>& wind, double stiffnessScale) {
@@ -439,6 +482,19 @@ void ForceField::evaluate(std::span<const Vec3> positions, std::span<Vec3> force
         bars(0, barCount(), 0);
         knotForces(0, knots, 0);
     }
+}
+
+double ForceField::maxResidual(std::span<const Vec3> force) const {
+    double worst = 0;
+    for (std::size_t j = 0; j < knotCount(); ++j) {
+        if (fixed_[j])
+            continue;
+        const double r = residualOf(j, force[j]);
+        if (!std::isfinite(r))
+            return std::numeric_limits<double>::infinity();
+        worst = std::max(worst, r);
+    }
+    return worst;
 }
 
 double totalWeight(const MassSpringSystem& system) {

@@ -49,6 +49,17 @@ class ForceField {
     /// throws UserError naming the first offending knot or bar.
     explicit ForceField(const MassSpringSystem& system);
 
+    /// Takes `system`'s masses, gravity, rest lengths and stiffnesses into this field, validated
+    /// as the constructor validates them (UserError naming the first offending knot or bar), and
+    /// keeps every table that depends only on the topology. `system` must have the knots, fixed
+    /// flags and bars (ends) of the system the field was built from: a solver that relaxes edits
+    /// of one topology (a drag) updates its field instead of building a new one. The field is
+    /// then the one the constructor would build from `system`.
+    void setLaw(const MassSpringSystem& system);
+    /// Replaces every bar's compression stiffness (barCount() values, N/m at scale 1, finite and
+    /// >= 0): a solver's staged law (see NewtonRelaxer.h).
+    void setCompressionStiffness(std::span<const double> kCompression);
+
     std::size_t knotCount() const { return fixed_.size(); }
     std::size_t barCount() const { return restLength_.size(); }
 
@@ -81,6 +92,10 @@ class ForceField {
     double residualOf(std::size_t j, const Vec3& force) const {
         return force.norm() * inverseWeight_[j];
     }
+
+    /// The convergence measure of `force` (an evaluate() result): max over free knots of
+    /// residualOf, +inf if one is not finite; the same bits as residual() of the system.
+    double maxResidual(std::span<const Vec3> force) const;
 
     /// F_j for all knots: force[j] in N (fixed knots too). With a pool the work is split over its
     /// threads; the result is the same bit for bit (and the same as the two phases above).

@@ -263,3 +263,53 @@ TEST_CASE("A malformed system is a user error naming the culprit", "[forces]") {
     s.kCompression.push_back(1);
     rejects(s, "kCompression has 3 entries, expected 2");
 }
+
+TEST_CASE("setLaw gives the field a new system of the same topology would have, and refuses a "
+          "bad law as the constructor does",
+          "[forces]") {
+    const MassSpringSystem s = perturbedSheet(30, 40);
+    MassSpringSystem edited = s;
+    for (std::size_t b = 0; b < edited.barCount(); ++b) {
+        edited.restLength[b] *= 1.0 + 0.01 * static_cast<double>(b % 7);
+        edited.kTension[b] *= 0.5;
+        edited.kCompression[b] *= 2.0;
+    }
+    for (double& m : edited.mass)
+        m *= 1.25;
+    edited.gravity = {0.1, 0, -9.7};
+    ForceField updated(s);
+    updated.setLaw(edited);
+    ForceField built(edited);
+    for (double scale : {1.0, 0.3}) {
+        updated.setLoad(Wind{{1, 0.5, 0}, 0.3}, scale);
+        built.setLoad(Wind{{1, 0.5, 0}, 0.3}, scale);
+        std::vector<Vec3> a(s.knotCount()), b(s.knotCount());
+        updated.evaluate(s.position, a);
+        built.evaluate(s.position, b);
+        CHECK(sameBits(a, b));
+        CHECK(updated.maxResidual(a) == built.maxResidual(b));
+    }
+    CHECK(built.maxResidual(std::vector<Vec3>(s.knotCount())) == 0);
+
+    // A refused law names the culprit and leaves the field as it was.
+    MassSpringSystem bad = edited;
+    bad.restLength[5] = 0;
+    bad.mass[9] = -1;
+    CHECK_THROWS_WITH(updated.setLaw(bad), Catch::Contains("knot 9 has mass -1"));
+    bad.mass[9] = 1;
+    CHECK_THROWS_WITH(updated.setLaw(bad), Catch::Contains("bar 5 has rest length 0"));
+    updated.setLoad(std::nullopt, 1.0);
+    built.setLoad(std::nullopt, 1.0);
+    std::vector<Vec3> a(s.knotCount()), b(s.knotCount());
+    updated.evaluate(s.position, a);
+    built.evaluate(s.position, b);
+    CHECK(sameBits(a, b));
+    std::vector<double> stiff(s.barCount(), 1e3);
+    updated.setCompressionStiffness(stiff);
+    MassSpringSystem hard = edited;
+    hard.kCompression = stiff;
+    ForceField hardField(hard);
+    updated.evaluate(s.position, a);
+    hardField.evaluate(s.position, b);
+    CHECK(sameBits(a, b));
+}

@@ -16,6 +16,7 @@
 //   netsculpt-bench-live --knots N       another size      --steps N   steps per drag
 //   --backend NAME                       the preview's backend (default: the studio's)
 //   --preview-scale S                    the preview's stiffness scale (default: the studio's)
+//   --only bar|rows                      one of the two drags (for profiling)
 
 #include "commands/Document.h"
 #include "interaction/DemoScenes.h"
@@ -25,6 +26,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <functional>
 #include <mutex>
 #include <string>
@@ -156,6 +158,15 @@ void runDrag(const char* name, Document& doc, LiveRelaxer& live, const Publicati
         withinFrame += editSeconds + timing.relaxSeconds <= kFrameSeconds ? 1 : 0;
     }
     doc.endGesture();
+    // The shape after the drag, hashed bit for bit: the same on every run and thread count.
+    std::uint64_t hash = 1469598103934665603ull;
+    for (const Vec3& p : doc.compiled().system.position)
+        for (double v : {p.x, p.y, p.z}) {
+            std::uint64_t bits = 0;
+            std::memcpy(&bits, &v, sizeof bits);
+            hash = (hash ^ bits) * 1099511628211ull;
+        }
+    std::printf("%-11s shape hash %016llx\n", name, static_cast<unsigned long long>(hash));
     std::printf("%-11s %5d steps  edit median %6.1f ms  re-relax median %6.1f ms (max %6.1f)  "
                 "edit to shape median %6.1f ms, 90%% %6.1f ms  within one 30 fps frame: %d/%d  "
                 "converged: %d/%d  steps median %.0f\n",
@@ -169,6 +180,7 @@ void runDrag(const char* name, Document& doc, LiveRelaxer& live, const Publicati
 
 int main(int argc, char** argv) {
     int knots = 20000, steps = 20;
+    std::string only;
     LiveRelaxOptions options; // the studio's
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
@@ -180,9 +192,12 @@ int main(int argc, char** argv) {
             options.previewStiffnessScale = std::atof(argv[++i]);
         else if (arg == "--backend" && i + 1 < argc)
             options.backend = argv[++i];
+        else if (arg == "--only" && i + 1 < argc && (std::string(argv[i + 1]) == "bar" ||
+                                                     std::string(argv[i + 1]) == "rows"))
+            only = argv[++i];
         else {
             std::fprintf(stderr, "usage: %s [--knots N] [--steps N] [--backend NAME] "
-                                 "[--preview-scale S]\n", argv[0]);
+                                 "[--preview-scale S] [--only bar|rows]\n", argv[0]);
             return 2;
         }
     }
@@ -213,12 +228,14 @@ int main(int argc, char** argv) {
         settling.add(log.of(generation));
         printPublications("shapes shown while it settles", settling);
         const double bar = start.bar.at(0);
-        runDrag("bar length", doc, live, log, generation, steps, [&](int step) -> Command {
-            return SetBarLengthCommand{piece, std::nullopt, std::nullopt, bar * (1 + 0.005 * step)};
-        });
+        if (only != "rows")
+            runDrag("bar length", doc, live, log, generation, steps, [&](int step) -> Command {
+                return SetBarLengthCommand{piece, std::nullopt, std::nullopt, bar * (1 + 0.005 * step)};
+            });
         const int rows = doc.sculpture().pieces.at(piece).rows;
-        runDrag("rows", doc, live, log, generation, std::max(1, steps / 2),
-                [&](int step) -> Command { return SetRowsCommand{piece, rows + step}; });
+        if (only != "bar")
+            runDrag("rows", doc, live, log, generation, only == "rows" ? steps : std::max(1, steps / 2),
+                    [&](int step) -> Command { return SetRowsCommand{piece, rows + step}; });
     } catch (const std::exception& e) {
         std::fprintf(stderr, "netsculpt-bench-live: %s\n", e.what());
         return 1;

@@ -23,11 +23,14 @@ void HugePageArray::assign(std::size_t n) {
 }
 
 void HugePageArray::allocate(std::size_t n) {
-    data_.reset();
-    size_ = 0;
-    if (n == 0)
+    if (n <= capacity_) {
+        size_ = n;
         return;
-    const std::size_t bytes = (n * sizeof(double) + kHugePage - 1) / kHugePage * kHugePage;
+    }
+    data_.reset();
+    size_ = capacity_ = 0;
+    const std::size_t wanted = n + n / 8;
+    const std::size_t bytes = (wanted * sizeof(double) + kHugePage - 1) / kHugePage * kHugePage;
     void* memory = std::aligned_alloc(kHugePage, bytes);
     if (!memory)
         throw std::bad_alloc();
@@ -36,6 +39,7 @@ void HugePageArray::allocate(std::size_t n) {
 #endif
     data_.reset(static_cast<double*>(memory));
     size_ = n;
+    capacity_ = bytes / sizeof(double);
 }
 
 } // namespace netsculpt

@@ -13,12 +13,17 @@ namespace netsculpt {
 
 class HugePageArray {
   public:
-    /// n zeros (the previous contents are released).
+    /// n zeros (the storage is kept when it holds n, see allocate).
     void assign(std::size_t n);
-    /// n doubles left as the kernel maps them (its fresh pages read as zero, but no pass over
-    /// them is made here: they are first touched by whoever writes them; the previous contents
-    /// are released). For storage that is always written before it is read, such as a factor.
+    /// n doubles whose values are unspecified, for storage that is always written before it is
+    /// read, such as a factor: no pass over them is made here. When the storage already holds n
+    /// doubles it is kept (no new page to fault in: a solver whose arrays change size with the
+    /// topology, such as rows added one by one, keeps touching the same pages); else it is
+    /// replaced by fresh pages for n plus an eighth (the next few growths fit), first touched by
+    /// whoever writes them.
     void allocate(std::size_t n);
+    /// Doubles the storage holds without a new allocation.
+    std::size_t capacity() const { return capacity_; }
     double* data() { return data_.get(); }
     const double* data() const { return data_.get(); }
     std::size_t size() const { return size_; }
@@ -34,6 +39,7 @@ class HugePageArray {
     };
     std::unique_ptr<double, Free> data_;
     std::size_t size_ = 0;
+    std::size_t capacity_ = 0;
 };
 
 } // namespace netsculpt

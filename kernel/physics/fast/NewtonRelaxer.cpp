@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <span>
 #include <string>
 #include <thread>
@@ -119,7 +120,9 @@ double secondsSince(Clock::time_point start) {
 } // namespace
 
 /// The topology-dependent part of a run: the free numbering, the block pattern and its
-/// factorization analysis. Kept between calls for a system with the same topology.
+/// factorization analysis, and the storage of a run (its force field, per-knot and per-bar
+/// vectors, the Newton matrix): kept between calls for a system with the same topology, so that
+/// a warm run (a drag step) allocates nothing and touches no fresh page.
 struct NewtonAnalysis {
     std::vector<std::uint8_t> fixed;
     std::vector<std::uint32_t> barA, barB;
@@ -130,13 +133,32 @@ struct NewtonAnalysis {
     std::vector<std::array<std::uint32_t, 2>> pairs; ///< free indices of the blocks' nodes
     SupernodalCholesky cholesky;
 
+    // A run's storage (NewtonRun's members of the same names). Every run sets what it reads: its
+    // law into the field (ForceField::setLaw), its start into the vectors.
+    ForceField field;
+    std::vector<Vec3> x, trial, force, step, bestX;
+    std::vector<double> tension, kCompression, rhs, barTerm, weightOf, dampingUnit;
+    HugePageArray barBlock; ///< written whole by every assembly
+    HugePageArray values;   ///< likewise
+
     bool matches(const MassSpringSystem& system) const {
         return system.fixed == fixed && system.barA == barA && system.barB == barB;
     }
 
-    explicit NewtonAnalysis(const MassSpringSystem& system)
-        : fixed(system.fixed), barA(system.barA), barB(system.barB) {
+    /// `checked`: the system's force field (built, so validated, by the caller).
+    NewtonAnalysis(const MassSpringSystem& system, ForceField&& checked) : field(std::move(checked)) {
+        analyse(system);
+    }
+
+    /// Analyses `system`'s topology (its force field is already in `field`), keeping the
+    /// storage of the previous one where it is large enough (the factor's among it).
+    void analyse(const MassSpringSystem& system) {
+        fixed = system.fixed;
+        barA = system.barA;
+        barB = system.barB;
         const std::size_t knots = system.knotCount(), bars = system.barCount();
+        freeKnots.clear();
+        pairs.clear();
         freeIndex.assign(knots, -1);
         for (std::size_t j = 0; j < knots; ++j)
             if (!fixed[j]) {
@@ -180,6 +202,8 @@ struct NewtonAnalysis {
             coordinates[f] = {p.x, p.y, p.z};
         }
         cholesky.analyse(freeKnots.size(), pairs, coordinates);
+        barBlock.allocate(9 * bars);
+        values.allocate(9 * (freeKnots.size() + pairs.size()));
     }
 };
 
@@ -221,23 +245,27 @@ class NewtonRun {
     NewtonAnalysis& analysis_;
     NewtonStatistics& stats_;
     Clock::time_point start_;
-    ForceField field_;
+    // The run's storage lives in the analysis (kept between calls on one topology).
+    ForceField& field_;
     std::unique_ptr<ThreadPool> pool_;
 
-    std::vector<Vec3> x_, trial_, force_, step_;
-    std::vector<double> tension_;    ///< mixed stage: the bars' tension estimates, N
-    std::vector<double> kCompression_; ///< the stage's compression stiffness per bar, N/m at scale 1
-    HugePageArray barBlock_;         ///< 9 per bar: its Hessian block
-    HugePageArray values_;           ///< the Newton matrix's blocks (SupernodalCholesky layout)
-    std::vector<double> rhs_;        ///< 3 per free knot
-    std::vector<double> barTerm_;    ///< per bar scratch for sums done in a fixed order
-    std::vector<double> weightOf_;   ///< m_j |g| per knot
+    std::vector<Vec3>& x_;
+    std::vector<Vec3>& trial_;
+    std::vector<Vec3>& force_;
+    std::vector<Vec3>& step_;
+    std::vector<double>& tension_;      ///< mixed stage: the bars' tension estimates, N
+    std::vector<double>& kCompression_; ///< the stage's compression stiffness per bar, N/m at scale 1
+    HugePageArray& barBlock_;           ///< 9 per bar: its Hessian block
+    HugePageArray& values_;             ///< the Newton matrix's blocks (SupernodalCholesky layout)
+    std::vector<double>& rhs_;          ///< 3 per free knot
+    std::vector<double>& barTerm_;      ///< per bar scratch for sums done in a fixed order
+    std::vector<double>& weightOf_;     ///< m_j |g| per knot
     double scale_ = 1;
     double compressionBlend_ = 0;
     double residual_ = 0;            ///< at x_, current scale
     double shift_ = kMinShift;       ///< lambda of the Levenberg shift
     double damping_ = 0;             ///< lambda of the weight-scaled shift (energy stages)
-    std::vector<double> dampingUnit_; ///< per free knot: m_j |g| / (mean rest length), N/m
+    std::vector<double>& dampingUnit_; ///< per free knot: m_j |g| / (mean rest length), N/m
     double meanDiagonal_ = 1;
     bool windy_ = false;
     std::int64_t steps_ = 0, evaluations_ = 0;
@@ -245,7 +273,7 @@ class NewtonRun {
     std::string stopReason_;
     // The last stage (the material's stiffness): its best state so far, returned when the run
     // stops before converging (its residual can rise and fall from one iteration to the next).
-    std::vector<Vec3> bestX_;
+    std::vector<Vec3>& bestX_;
     double bestResidual_ = std::numeric_limits<double>::infinity();
 };
 
@@ -253,7 +281,11 @@ NewtonRun::NewtonRun(MassSpringSystem& system, const RelaxOptions& options,
                      NewtonAnalysis& analysis, NewtonStatistics& statistics,
                      Clock::time_point start)
     : system_(system), options_(options), analysis_(analysis), stats_(statistics), start_(start),
-      field_(system) {
+      field_(analysis.field), x_(analysis.x), trial_(analysis.trial), force_(analysis.force),
+      step_(analysis.step), tension_(analysis.tension), kCompression_(analysis.kCompression),
+      barBlock_(analysis.barBlock), values_(analysis.values), rhs_(analysis.rhs),
+      barTerm_(analysis.barTerm), weightOf_(analysis.weightOf),
+      dampingUnit_(analysis.dampingUnit), bestX_(analysis.bestX) {
     field_.setLoad(options.wind, 1.0);
     windy_ = options.wind && options.wind->pressure > 0;
     int threads = options.threads;
@@ -272,11 +304,10 @@ NewtonRun::NewtonRun(MassSpringSystem& system, const RelaxOptions& options,
     step_.assign(knots, Vec3{});
     tension_.assign(bars, 0.0);
     kCompression_ = system.kCompression;
-    barBlock_.assign(9 * bars);
-    values_.assign(9 * (analysis.freeKnots.size() + analysis.pairs.size()));
     rhs_.assign(3 * analysis.freeKnots.size(), 0.0);
     barTerm_.assign(bars, 0.0);
     weightOf_.resize(knots);
+    bestX_.clear();
     const double g = system.gravity.norm();
     for (std::size_t j = 0; j < knots; ++j)
         weightOf_[j] = system.mass[j] * g;
@@ -316,14 +347,7 @@ void NewtonRun::setCompression(double blend) {
     compressionBlend_ = blend;
     for (std::size_t b = 0; b < system_.barCount(); ++b)
         kCompression_[b] = std::max(system_.kCompression[b], blend * system_.kTension[b]);
-    if (blend == 0) {
-        field_ = ForceField(system_);
-    } else {
-        MassSpringSystem blended = system_;
-        blended.kCompression = kCompression_;
-        field_ = ForceField(blended);
-    }
-    field_.setLoad(options_.wind, scale_);
+    field_.setCompressionStiffness(kCompression_);
 }
 
 /// Whether some bar whose compression stiffness differs from its tension one is shorter than its
@@ -518,15 +542,12 @@ void NewtonRun::hintedStart(double tolerance) {
     const std::span<const double> hint = options_.startTensions;
     const std::vector<Vec3> start = x_;
     const double startResidual = residual_;
-    MassSpringSystem hinted = system_;
     for (std::size_t b = 0; b < system_.barCount(); ++b) {
         tension_[b] = hint[b];
-        if (hint[b] > 0)
-            hinted.kCompression[b] = std::max(system_.kCompression[b], system_.kTension[b]);
+        kCompression_[b] = hint[b] > 0 ? std::max(system_.kCompression[b], system_.kTension[b])
+                                       : system_.kCompression[b];
     }
-    kCompression_ = hinted.kCompression;
-    field_ = ForceField(hinted);
-    field_.setLoad(options_.wind, scale_);
+    field_.setCompressionStiffness(kCompression_);
     residual_ = evaluate(x_);
     double best = residual_;
     shift_ = kFinalMinShift;
@@ -564,7 +585,7 @@ void NewtonRun::hintedStart(double tolerance) {
         best = std::min(best, residual_);
     }
     stats_.hintIterations = steps_ - first;
-    // Back to the material's law (setCompression(0) rebuilds the field).
+    // Back to the material's law.
     compressionBlend_ = -1;
     setCompression(0.0);
     residual_ = evaluate(x_);
@@ -828,8 +849,12 @@ RelaxResult NewtonRun::run() {
     std::copy(x_.begin(), x_.end(), system_.position.begin());
     RelaxResult result;
     result.backend = "fast";
-    result.residual = residual(system_, options_.wind);
+    // residual(system_, options_.wind), on the field: the material's law at scale 1.
+    setCompression(0.0);
+    setScale(1.0);
+    field_.evaluate(x_, force_, pool_.get());
     ++evaluations_;
+    result.residual = field_.maxResidual(force_);
     result.converged = result.residual < tolerance;
     if (stopReason_ == "converged" && !result.converged)
         stopReason_ = "diverged";
@@ -838,7 +863,6 @@ RelaxResult NewtonRun::run() {
     result.forceEvaluations = evaluations_;
     result.seconds = secondsSince(start_);
     stats_.iterations = steps_;
-    setScale(1.0);
     residual_ = result.residual;
     report(true);
     return result;
@@ -852,7 +876,14 @@ FastRelaxer::~FastRelaxer() = default;
 RelaxResult FastRelaxer::relax(MassSpringSystem& system, const RelaxOptions& options) {
     const auto start = Clock::now();
     validate(options);
-    ForceField check(system); // validates the system (UserError naming the first problem)
+    // Validates the system (UserError naming the first problem): a system of the analysis's
+    // topology in its force field, any other in a new one.
+    const bool reuse = analysis_ && analysis_->matches(system);
+    std::optional<ForceField> fresh;
+    if (reuse)
+        analysis_->field.setLaw(system);
+    else
+        fresh.emplace(system);
     const std::size_t knots = system.knotCount();
     std::size_t fixedCount = 0;
     for (std::size_t j = 0; j < knots; ++j) {
@@ -877,12 +908,22 @@ RelaxResult FastRelaxer::relax(MassSpringSystem& system, const RelaxOptions& opt
                         "(it would fall)");
 
     statistics_ = NewtonStatistics{};
-    if (analysis_ && analysis_->matches(system)) {
+    if (reuse) {
         statistics_.reusedAnalysis = true;
     } else {
         const auto t0 = Clock::now();
-        analysis_.reset();
-        analysis_ = std::make_unique<NewtonAnalysis>(system);
+        if (analysis_) {
+            // A new topology (rows added, say): the previous one's storage is reused.
+            try {
+                analysis_->field = std::move(*fresh);
+                analysis_->analyse(system);
+            } catch (...) {
+                analysis_.reset();
+                throw;
+            }
+        } else {
+            analysis_ = std::make_unique<NewtonAnalysis>(system, std::move(*fresh));
+        }
         statistics_.analysisSeconds = secondsSince(t0);
     }
     statistics_.factorFlops = analysis_->cholesky.factorFlops();

@@ -99,7 +99,11 @@ struct NewtonStatistics {
 
 /// The Newton backend ("fast"). Keeps the symbolic analysis of the last system it relaxed and
 /// reuses it when the next one has the same knots, fixed flags and bars (a warm start after a
-/// drag or a material edit), so keep one instance per document.
+/// drag or a material edit), so keep one instance per document. With the analysis it keeps a
+/// run's storage (force field, vectors, the Newton matrix and the factor): a run on the same
+/// topology updates the field's law in place and allocates nothing, and one on a new topology
+/// reuses the storage that is large enough. Nothing of an earlier run's state carries over: a
+/// run gives the bits a new relaxer with the same analysis would.
 class FastRelaxer final : public Relaxer {
   public:
     FastRelaxer();

@@ -395,12 +395,28 @@ bool SupernodalCholesky::factorSupernode(std::size_t s, std::span<const double> 
         MatrixMap product(worker.product.data(), m, k);
         product.noalias() = source.middleRows(update.begin, m) *
                             source.middleRows(update.begin, k).transpose();
+        // Each entry of the product is subtracted from its place in the block once, in the same
+        // order whichever way: the places are looked up once per update, and where they are
+        // consecutive (the usual case: a descendant's rows are runs of whole nodes) a column's
+        // subtraction is one contiguous pass.
         const std::int64_t* sourceRowIndex = rows_.data() + rowStart_[d] + update.begin;
+        if (worker.place.size() < static_cast<std::size_t>(m))
+            worker.place.resize(static_cast<std::size_t>(m));
+        std::int64_t* place = worker.place.data();
+        for (std::int64_t ii = 0; ii < m; ++ii)
+            place[ii] = worker.position[static_cast<std::size_t>(sourceRowIndex[ii])];
+        const bool consecutive = place[m - 1] - place[0] == m - 1;
         for (std::int64_t jj = 0; jj < k; ++jj) {
             double* column = block + (sourceRowIndex[jj] - superStart_[s]) * rowCount;
             const double* p = product.data() + jj * m;
-            for (std::int64_t ii = jj; ii < m; ++ii)
-                column[worker.position[static_cast<std::size_t>(sourceRowIndex[ii])]] -= p[ii];
+            if (consecutive) {
+                double* to = column + place[0];
+                for (std::int64_t ii = jj; ii < m; ++ii)
+                    to[ii] -= p[ii];
+            } else {
+                for (std::int64_t ii = jj; ii < m; ++ii)
+                    column[place[ii]] -= p[ii];
+            }
         }
     }
 

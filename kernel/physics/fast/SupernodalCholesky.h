@@ -76,6 +76,7 @@ class SupernodalCholesky {
     struct Worker {
         std::vector<std::int64_t> position; ///< scratch: row -> position in the current supernode
         std::vector<double> product;        ///< scratch: one update block
+        std::vector<std::int64_t> place;    ///< scratch: an update's rows' positions in its target
     };
 
     /// Fills, updates and factors supernode s; false when its pivots are not all > 0.
