@@ -209,6 +209,14 @@ struct NewtonAnalysis {
 
 namespace {
 
+/// One stage of a run: a stiffness scale, the residual it stops at, whether it starts mixed.
+struct Stage {
+    double scale;
+    double tolerance;
+    bool mixed;
+    double blend; ///< compression stiffness max(k_c, blend k_s)
+};
+
 /// One relaxation: the Newton iteration and its bookkeeping.
 class NewtonRun {
   public:
@@ -236,6 +244,14 @@ class NewtonRun {
     double meritOf(const std::vector<Vec3>& at);
     void takeStep(double alpha, bool mixed);
     void hintedStart(double tolerance);
+    bool isWarm() const;
+    double softStageScale() const;
+    std::vector<Stage> planStages(double softScale, bool warm) const;
+    void runStage(const Stage& stage, bool lastStage, bool slack);
+    bool assembleAndFactorize(bool mixed, int& exactPause);
+    double searchLine(bool mixed, double slope, double best, bool& accepted, double& fullChange);
+    void adaptDamping(double alpha, double slope, double fullChange);
+    RelaxResult finish(double tolerance);
     bool stopRequested();
     void keepIfBest();
     void report(bool force);
@@ -622,11 +638,10 @@ void NewtonRun::report(bool force) {
 }
 
 RelaxResult NewtonRun::run() {
-    const std::size_t bars = system_.barCount();
     const double tolerance = options_.tolerance;
     setScale(1.0);
     residual_ = evaluate(x_);
-    if (options_.startTensions.size() == bars && !analysis_.freeKnots.empty() &&
+    if (options_.startTensions.size() == system_.barCount() && !analysis_.freeKnots.empty() &&
         !(residual_ < tolerance))
         hintedStart(tolerance);
 
@@ -634,41 +649,12 @@ RelaxResult NewtonRun::run() {
     double softScale = 1.0;
     bool warm = false;
     if (!analysis_.freeKnots.empty() && !(residual_ < tolerance)) {
-        std::size_t taut = 0;
-        double minAxial = std::numeric_limits<double>::infinity(), maxStrain = 0;
-        for (std::size_t b = 0; b < bars; ++b) {
-            const double rest = system_.restLength[b];
-            const double strain = distance(x_[system_.barA[b]], x_[system_.barB[b]]) / rest - 1;
-            taut += strain > kTautStrain ? 1 : 0;
-            maxStrain = std::max(maxStrain, strain);
-            minAxial = std::min(minAxial, system_.kTension[b] * rest);
-        }
-        warm = static_cast<double>(taut) >= kWarmTautShare * static_cast<double>(bars) &&
-               maxStrain <= kWarmMaxStrain && residual_ <= kWarmMaxResidual;
-        const std::size_t held = system_.knotCount() - analysis_.freeKnots.size();
-        const double meanHeldLoad = totalWeight(system_) / static_cast<double>(std::max<std::size_t>(held, 1));
-        const double scale = std::min(1.0, kSoftLoadFactor * meanHeldLoad / minAxial);
-        if (options_.continuation && !warm && scale <= kMaxSoftScale)
-            softScale = scale;
+        warm = isWarm();
+        if (options_.continuation && !warm)
+            softScale = softStageScale();
     }
     stats_.softScale = softScale;
-
-    struct Stage {
-        double scale;
-        double tolerance;
-        bool mixed;
-        double blend; ///< compression stiffness max(k_c, blend k_s)
-    };
-    std::vector<Stage> stages;
-    if (softScale < 1.0) {
-        stages.push_back({softScale, std::max(kSoftTolerance, tolerance), false, 0.0});
-        for (double s = softScale * kStageFactor; s < 1 / std::sqrt(kStageFactor); s *= kStageFactor)
-            stages.push_back({s, std::max(kSoftTolerance, tolerance), false, 0.0});
-        for (double blend : kFinalBlends)
-            if (blend > 0)
-                stages.push_back({1.0, std::max(kBlendTolerance, tolerance), true, blend});
-    }
-    stages.push_back({1.0, tolerance, warm || softScale < 1.0, 0.0});
+    const std::vector<Stage> stages = planStages(softScale, warm);
 
     if (analysis_.freeKnots.empty() || residual_ < tolerance)
         stopReason_ = "converged";
@@ -695,148 +681,219 @@ RelaxResult NewtonRun::run() {
         } else if (stage.mixed) {
             elasticTensions();
         }
-        bool mixed = stage.mixed;
-        double best = residual_;
-        int sinceBest = 0;
-        const double minShift =
-            stageIndex + 1 == stages.size() && stage.mixed ? kFinalMinShift : kMinShift;
-        shift_ = minShift;
         if (stageIndex == 1 && slack) // later stages go on with the previous one's
             damping_ = kDampingStart;
-        const std::int64_t stageStart = steps_;
-        int exactPause = 0; // iterations left before the exact Hessian is tried again
-        const bool lastStage = stageIndex + 1 == stages.size();
-        if (lastStage)
-            keepIfBest();
-
-        while (!(residual_ < stage.tolerance)) {
-            if (stopRequested())
-                break;
-            report(false);
-
-            // The exact Hessian first (a slack bar's negative geometric stiffness included: near
-            // a stable equilibrium with slack bars only it converges quadratically); when it is
-            // not positive definite, the projected one.
-            bool exact = exactPause == 0;
-            if (exactPause > 0)
-                --exactPause;
-            const auto assembleAndFactorize = [&] {
-                assemble(mixed, exact);
-                bool ok = factorize();
-                if (!ok && exact) {
-                    exact = false;
-                    exactPause = kExactPause;
-                    assemble(mixed, false);
-                    ok = factorize();
-                }
-                while (!ok && shift_ < kMaxShift) {
-                    shift_ = std::max(shift_ * 10, kFailShift);
-                    ok = factorize();
-                }
-                return ok;
-            };
-            bool factored = assembleAndFactorize();
-            ++steps_;
-            if (!factored) {
-                stopReason_ = "diverged";
-                break;
-            }
-            solve();
-            double slope = 0;
-            for (std::uint32_t j : analysis_.freeKnots)
-                slope += force_[j].dot(step_[j]);
-
-            double alpha = 1;
-            bool accepted = false;
-            double fullChange = 0; // energy change of the full step (energy line search)
-            if (mixed) {
-                for (int k = 0; k < kMaxBacktracks && !accepted; ++k, alpha *= 0.5) {
-                    for (std::uint32_t j : analysis_.freeKnots)
-                        trial_[j] = x_[j] + step_[j] * alpha;
-                    const double r = evaluate(trial_);
-                    accepted = r < kMixedGrowth * best;
-                    if (accepted)
-                        break;
-                }
-            } else if (windy_) {
-                const double merit = meritOf(x_);
-                for (int k = 0; k < kMaxBacktracks && !accepted; ++k, alpha *= 0.5) {
-                    for (std::uint32_t j : analysis_.freeKnots)
-                        trial_[j] = x_[j] + step_[j] * alpha;
-                    accepted = meritOf(trial_) <= (1 - 2 * kArmijo * alpha) * merit;
-                    if (accepted)
-                        break;
-                }
-            } else if (slope > 0) {
-                for (int k = 0; k < kMaxBacktracks; ++k) {
-                    const double change = energyChange(alpha);
-                    if (k == 0)
-                        fullChange = change;
-                    if (std::isfinite(change) && change <= -kArmijo * alpha * slope) {
-                        accepted = true;
-                        break;
-                    }
-                    // Minimiser of the parabola through E(0), E'(0) = -slope and E(alpha),
-                    // kept within [alpha / 10, alpha / 2].
-                    double next = 0.5 * alpha;
-                    if (std::isfinite(change)) {
-                        const double curvature = change + slope * alpha;
-                        if (curvature > 0)
-                            next = std::clamp(slope * alpha * alpha / (2 * curvature), 0.1 * alpha,
-                                              0.5 * alpha);
-                    }
-                    alpha = next;
-                }
-            }
-            if (!accepted) {
-                // No acceptable step along this direction: regularize more and try again from
-                // the same positions.
-                damping_ = std::max(damping_ * kDampingUp, kDampingMin);
-                shift_ = std::max(shift_ * 10, kFailShift);
-                if (shift_ > kMaxShift) {
-                    stopReason_ = "diverged";
-                    break;
-                }
-                residual_ = evaluate(x_);
-                continue;
-            }
-            if (alpha < kSmallStep && steps_ > stageStart + 1) // a poor model: regularize more
-                shift_ = std::max(shift_ * 10, kFailShift);
-            takeStep(alpha, mixed);
-            residual_ = evaluate(x_);
-            if (lastStage)
-                keepIfBest();
-            if (alpha == 1.0)
-                shift_ = std::max(shift_ * 0.1, minShift);
-            if (!mixed && !windy_ && slack) {
-                // Trust-region style update of the weight-scaled shift from the ratio of the
-                // full step's actual to predicted decrease (model: E - F.p + 1/2 p.H p, with
-                // (H + D) p = F, so the prediction is 1/2 (F.p + p.D p)).
-                double damped = 0;
-                if (damping_ > 0)
-                    for (std::size_t f = 0; f < dampingUnit_.size(); ++f) {
-                        const Vec3& p = step_[analysis_.freeKnots[f]];
-                        damped += damping_ * dampingUnit_[f] * p.dot(p);
-                    }
-                const double predicted = 0.5 * (slope + damped);
-                const double ratio = predicted > 0 ? -fullChange / predicted : 0.0;
-                if (alpha == 1.0 && ratio > kRatioGood)
-                    damping_ = damping_ * kDampingDown < kDampingMin ? 0.0 : damping_ * kDampingDown;
-                else if (alpha < kDampingCut || ratio < kRatioPoor)
-                    damping_ = std::max(damping_ * kDampingUp, kDampingMin);
-            }
-            if (mixed) {
-                if (residual_ < best) {
-                    best = residual_;
-                    sinceBest = 0;
-                } else if (++sinceBest >= kMixedPatience) {
-                    mixed = false; // stalled: the energy line search always makes progress
-                }
-            }
-        }
+        runStage(stage, stageIndex + 1 == stages.size(), slack);
         if (stageIndex + 1 < stages.size())
             stats_.softIterations = steps_;
     }
+    return finish(tolerance);
+}
+
+/// Whether the start is warm: at least kWarmTautShare of the bars stretched by more than
+/// kTautStrain, none by more than kWarmMaxStrain, and the residual at most kWarmMaxResidual.
+bool NewtonRun::isWarm() const {
+    const std::size_t bars = system_.barCount();
+    std::size_t taut = 0;
+    double maxStrain = 0;
+    for (std::size_t b = 0; b < bars; ++b) {
+        const double strain =
+            distance(x_[system_.barA[b]], x_[system_.barB[b]]) / system_.restLength[b] - 1;
+        taut += strain > kTautStrain ? 1 : 0;
+        maxStrain = std::max(maxStrain, strain);
+    }
+    return static_cast<double>(taut) >= kWarmTautShare * static_cast<double>(bars) &&
+           maxStrain <= kWarmMaxStrain && residual_ <= kWarmMaxResidual;
+}
+
+/// The soft stage's stiffness scale for a cold start: the softest bar's EA brought to
+/// kSoftLoadFactor times the mean load per held knot; 1 (no soft stage) when that would not
+/// soften the material by at least kMaxSoftScale.
+double NewtonRun::softStageScale() const {
+    double minAxial = std::numeric_limits<double>::infinity();
+    for (std::size_t b = 0; b < system_.barCount(); ++b)
+        minAxial = std::min(minAxial, system_.kTension[b] * system_.restLength[b]);
+    const std::size_t held = system_.knotCount() - analysis_.freeKnots.size();
+    const double meanHeldLoad =
+        totalWeight(system_) / static_cast<double>(std::max<std::size_t>(held, 1));
+    const double scale = std::min(1.0, kSoftLoadFactor * meanHeldLoad / minAxial);
+    return scale <= kMaxSoftScale ? scale : 1.0;
+}
+
+/// The stages of a run: from a soft scale below 1, that stage, the intermediate ones (slack
+/// nets only, decided in run()), the compression blends; always the material's last, mixed
+/// when the start is warm or the run comes from a softer stage.
+std::vector<Stage> NewtonRun::planStages(double softScale, bool warm) const {
+    const double tolerance = options_.tolerance;
+    std::vector<Stage> stages;
+    if (softScale < 1.0) {
+        stages.push_back({softScale, std::max(kSoftTolerance, tolerance), false, 0.0});
+        for (double s = softScale * kStageFactor; s < 1 / std::sqrt(kStageFactor); s *= kStageFactor)
+            stages.push_back({s, std::max(kSoftTolerance, tolerance), false, 0.0});
+        for (double blend : kFinalBlends)
+            if (blend > 0)
+                stages.push_back({1.0, std::max(kBlendTolerance, tolerance), true, blend});
+    }
+    stages.push_back({1.0, tolerance, warm || softScale < 1.0, 0.0});
+    return stages;
+}
+
+/// Newton iterations at the current scale and compression law down to the stage's tolerance
+/// (or a stop): mixed while the stage is and the residual keeps improving, else on the energy.
+void NewtonRun::runStage(const Stage& stage, bool lastStage, bool slack) {
+    bool mixed = stage.mixed;
+    double best = residual_;
+    int sinceBest = 0;
+    const double minShift = lastStage && stage.mixed ? kFinalMinShift : kMinShift;
+    shift_ = minShift;
+    const std::int64_t stageStart = steps_;
+    int exactPause = 0; // iterations left before the exact Hessian is tried again
+    if (lastStage)
+        keepIfBest();
+
+    while (!(residual_ < stage.tolerance)) {
+        if (stopRequested())
+            break;
+        report(false);
+        const bool factored = assembleAndFactorize(mixed, exactPause);
+        ++steps_;
+        if (!factored) {
+            stopReason_ = "diverged";
+            break;
+        }
+        solve();
+        double slope = 0;
+        for (std::uint32_t j : analysis_.freeKnots)
+            slope += force_[j].dot(step_[j]);
+
+        bool accepted = false;
+        double fullChange = 0; // energy change of the full step (energy line search)
+        const double alpha = searchLine(mixed, slope, best, accepted, fullChange);
+        if (!accepted) {
+            // No acceptable step along this direction: regularize more and try again from
+            // the same positions.
+            damping_ = std::max(damping_ * kDampingUp, kDampingMin);
+            shift_ = std::max(shift_ * 10, kFailShift);
+            if (shift_ > kMaxShift) {
+                stopReason_ = "diverged";
+                break;
+            }
+            residual_ = evaluate(x_);
+            continue;
+        }
+        if (alpha < kSmallStep && steps_ > stageStart + 1) // a poor model: regularize more
+            shift_ = std::max(shift_ * 10, kFailShift);
+        takeStep(alpha, mixed);
+        residual_ = evaluate(x_);
+        if (lastStage)
+            keepIfBest();
+        if (alpha == 1.0)
+            shift_ = std::max(shift_ * 0.1, minShift);
+        if (!mixed && !windy_ && slack)
+            adaptDamping(alpha, slope, fullChange);
+        if (mixed) {
+            if (residual_ < best) {
+                best = residual_;
+                sinceBest = 0;
+            } else if (++sinceBest >= kMixedPatience) {
+                mixed = false; // stalled: the energy line search always makes progress
+            }
+        }
+    }
+}
+
+/// The Newton matrix at x_, factorized: the exact Hessian first (a slack bar's negative
+/// geometric stiffness included: near a stable equilibrium with slack bars only it converges
+/// quadratically), the projected one when that is not positive definite (then for kExactPause
+/// iterations), the shift raised while the factorization fails. False: it never succeeded.
+bool NewtonRun::assembleAndFactorize(bool mixed, int& exactPause) {
+    bool exact = exactPause == 0;
+    if (exactPause > 0)
+        --exactPause;
+    assemble(mixed, exact);
+    bool ok = factorize();
+    if (!ok && exact) {
+        exactPause = kExactPause;
+        assemble(mixed, false);
+        ok = factorize();
+    }
+    while (!ok && shift_ < kMaxShift) {
+        shift_ = std::max(shift_ * 10, kFailShift);
+        ok = factorize();
+    }
+    return ok;
+}
+
+/// The step length along step_: mixed, the first halving whose residual stays below
+/// kMixedGrowth times the stage's best; with wind, Armijo on the residual's merit; else Armijo
+/// on the energy with safeguarded quadratic interpolation (fullChange: the full step's energy
+/// change). accepted: false when no length passed (the energy way also when slope <= 0).
+double NewtonRun::searchLine(bool mixed, double slope, double best, bool& accepted,
+                             double& fullChange) {
+    double alpha = 1;
+    if (mixed) {
+        for (int k = 0; k < kMaxBacktracks && !accepted; ++k, alpha *= 0.5) {
+            for (std::uint32_t j : analysis_.freeKnots)
+                trial_[j] = x_[j] + step_[j] * alpha;
+            const double r = evaluate(trial_);
+            accepted = r < kMixedGrowth * best;
+            if (accepted)
+                break;
+        }
+    } else if (windy_) {
+        const double merit = meritOf(x_);
+        for (int k = 0; k < kMaxBacktracks && !accepted; ++k, alpha *= 0.5) {
+            for (std::uint32_t j : analysis_.freeKnots)
+                trial_[j] = x_[j] + step_[j] * alpha;
+            accepted = meritOf(trial_) <= (1 - 2 * kArmijo * alpha) * merit;
+            if (accepted)
+                break;
+        }
+    } else if (slope > 0) {
+        for (int k = 0; k < kMaxBacktracks; ++k) {
+            const double change = energyChange(alpha);
+            if (k == 0)
+                fullChange = change;
+            if (std::isfinite(change) && change <= -kArmijo * alpha * slope) {
+                accepted = true;
+                break;
+            }
+            // Minimiser of the parabola through E(0), E'(0) = -slope and E(alpha),
+            // kept within [alpha / 10, alpha / 2].
+            double next = 0.5 * alpha;
+            if (std::isfinite(change)) {
+                const double curvature = change + slope * alpha;
+                if (curvature > 0)
+                    next = std::clamp(slope * alpha * alpha / (2 * curvature), 0.1 * alpha,
+                                      0.5 * alpha);
+            }
+            alpha = next;
+        }
+    }
+    return alpha;
+}
+
+/// Trust-region style update of the weight-scaled shift (slack nets, energy stages) from the
+/// ratio of the full step's actual to predicted decrease (model: E - F.p + 1/2 p.H p, with
+/// (H + D) p = F, so the prediction is 1/2 (F.p + p.D p)).
+void NewtonRun::adaptDamping(double alpha, double slope, double fullChange) {
+    double damped = 0;
+    if (damping_ > 0)
+        for (std::size_t f = 0; f < dampingUnit_.size(); ++f) {
+            const Vec3& p = step_[analysis_.freeKnots[f]];
+            damped += damping_ * dampingUnit_[f] * p.dot(p);
+        }
+    const double predicted = 0.5 * (slope + damped);
+    const double ratio = predicted > 0 ? -fullChange / predicted : 0.0;
+    if (alpha == 1.0 && ratio > kRatioGood)
+        damping_ = damping_ * kDampingDown < kDampingMin ? 0.0 : damping_ * kDampingDown;
+    else if (alpha < kDampingCut || ratio < kRatioPoor)
+        damping_ = std::max(damping_ * kDampingUp, kDampingMin);
+}
+
+/// The result: the positions returned (the last stage's best state when stopped early),
+/// judged by the project's own measure on exactly them.
+RelaxResult NewtonRun::finish(double tolerance) {
     if (stopReason_.empty())
         stopReason_ = "converged";
     else if (bestResidual_ < residual_)
