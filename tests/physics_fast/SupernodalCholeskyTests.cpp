@@ -104,7 +104,7 @@ TEST_CASE("supernodal Cholesky: the same bits with 1 and 2 threads", "[fast]") {
     REQUIRE(two.factorize(p.values, 0.0, &pool));
     std::vector<double> x(3 * p.nodes, 1.0), y = x;
     one.solve(x);
-    two.solve(y);
+    two.solve(y, &pool);
     CHECK(std::memcmp(x.data(), y.data(), x.size() * sizeof(double)) == 0);
 }
 
@@ -125,7 +125,7 @@ TEST_CASE("supernodal Cholesky with a geometric ordering: solves like a dense on
     Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(p.dense.rows(), -1, 2);
     std::vector<double> x(b.data(), b.data() + b.size()), y = x;
     one.solve(x);
-    two.solve(y);
+    two.solve(y, &pool);
     const Eigen::Map<Eigen::VectorXd> solution(x.data(), b.size());
     CHECK((p.dense * solution - b).cwiseAbs().maxCoeff() < 1e-10);
     CHECK(std::memcmp(x.data(), y.data(), x.size() * sizeof(double)) == 0);
@@ -162,7 +162,7 @@ TEST_CASE("supernodal Cholesky: shared supernodes give the same bits on 1 and 2 
             Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(p.dense.rows(), -1, 2);
             std::vector<double> x(b.data(), b.data() + b.size()), y = x;
             one.solve(x);
-            two.solve(y);
+            two.solve(y, &pool);
             CHECK(std::memcmp(x.data(), y.data(), x.size() * sizeof(double)) == 0);
             if (repeat == 0) {
                 const Eigen::Map<Eigen::VectorXd> solution(x.data(), b.size());

@@ -443,6 +443,10 @@ void SupernodalCholesky::analyse(std::size_t nodes,
     for (std::size_t s = 0; s < supers; ++s)
         splitStart_[s + 1] += splitStart_[s];
 
+    belowStart_.assign(supers + 1, 0);
+    for (std::size_t s = 0; s < supers; ++s)
+        belowStart_[s + 1] = belowStart_[s] + rowCount(s) - colCount(s);
+
     // Every block is zeroed and filled by its factorization before anything reads it.
     values_.allocate(static_cast<std::size_t>(valueStart_[supers]));
     workers_.clear();
@@ -677,8 +681,10 @@ bool SupernodalCholesky::factorize(std::span<const double> values, double shift,
     return !failed_;
 }
 
-void SupernodalCholesky::solve(std::span<double> b) const {
+void SupernodalCholesky::solve(std::span<double> b, ThreadPool* pool) const {
     assert(analysed_ && !failed_ && b.size() == dimension_);
+    if (pool && pool->size() > 1 && taskStart_.size() > 2)
+        return solveParallel(b, *pool);
     const std::size_t supers = superStart_.size() - 1;
     Eigen::VectorXd y(static_cast<Eigen::Index>(dimension_));
     for (std::size_t k = 0; k < dimension_; ++k)
@@ -715,6 +721,127 @@ void SupernodalCholesky::solve(std::span<double> b) const {
             part.noalias() -= l.bottomRows(below).transpose() * t;
         }
         l.topRows(cols).transpose().triangularView<Eigen::Upper>().solveInPlace(part);
+    }
+    for (std::size_t k = 0; k < dimension_; ++k)
+        b[static_cast<std::size_t>(perm_[k])] = y[static_cast<Eigen::Index>(k)];
+}
+
+// The same operations as solve() without a pool, per entry in the same order: the forward
+// substitution pulls, into a supernode's entries, the products of the descendants whose rows are
+// among its columns in increasing descendant order (the order in which the sequential solve
+// pushes them there); the backward one reads only its ancestors' finished entries. Tasks run
+// as in the factorization, forward children first, backward parents first.
+void SupernodalCholesky::solveParallel(std::span<double> b, ThreadPool& pool) const {
+    const std::size_t supers = superStart_.size() - 1;
+    const std::size_t tasks = taskStart_.size() - 1;
+    const auto threads = static_cast<std::size_t>(pool.size());
+    Eigen::VectorXd y(static_cast<Eigen::Index>(dimension_));
+    for (std::size_t k = 0; k < dimension_; ++k)
+        y[static_cast<Eigen::Index>(k)] = b[static_cast<std::size_t>(perm_[k])];
+    if (belowProducts_.size() != static_cast<std::size_t>(belowStart_[supers]))
+        belowProducts_.resize(static_cast<std::size_t>(belowStart_[supers]));
+    std::vector<Eigen::VectorXd> scratch(threads,
+                                         Eigen::VectorXd(static_cast<Eigen::Index>(maxRows_)));
+
+    auto forward = [&](std::size_t s, Eigen::VectorXd& t) {
+        const std::int64_t cols = superStart_[s + 1] - superStart_[s];
+        const std::int64_t rowCount = rowStart_[s + 1] - rowStart_[s];
+        for (std::int64_t u = updateStart_[s]; u < updateStart_[s + 1]; ++u) {
+            const Update& update = updates_[static_cast<std::size_t>(u)];
+            const std::size_t d = update.source;
+            const std::int64_t* sourceRows = rows_.data() + rowStart_[d];
+            const double* product =
+                belowProducts_.data() + belowStart_[d] - (superStart_[d + 1] - superStart_[d]);
+            for (std::uint32_t i = update.begin; i < update.end; ++i)
+                y[sourceRows[i]] -= product[i];
+        }
+        ConstMatrixMap l(values_.data() + valueStart_[s], rowCount, cols);
+        auto part = y.segment(superStart_[s], cols);
+        l.topRows(cols).triangularView<Eigen::Lower>().solveInPlace(part);
+        const std::int64_t below = rowCount - cols;
+        if (below == 0)
+            return;
+        auto head = t.head(below);
+        head.noalias() = l.bottomRows(below) * part;
+        std::copy(head.data(), head.data() + below, belowProducts_.data() + belowStart_[s]);
+    };
+    auto backward = [&](std::size_t s, Eigen::VectorXd& t) {
+        const std::int64_t cols = superStart_[s + 1] - superStart_[s];
+        const std::int64_t rowCount = rowStart_[s + 1] - rowStart_[s];
+        ConstMatrixMap l(values_.data() + valueStart_[s], rowCount, cols);
+        auto part = y.segment(superStart_[s], cols);
+        const std::int64_t below = rowCount - cols;
+        if (below > 0) {
+            auto head = t.head(below);
+            const std::int64_t* rows = rows_.data() + rowStart_[s] + cols;
+            for (std::int64_t i = 0; i < below; ++i)
+                head[i] = y[rows[i]];
+            part.noalias() -= l.bottomRows(below).transpose() * head;
+        }
+        l.topRows(cols).transpose().triangularView<Eigen::Upper>().solveInPlace(part);
+    };
+
+    // Backward, a task is ready when its parent task is done.
+    std::vector<std::uint32_t> childStart(tasks + 1, 0), children(tasks);
+    for (std::size_t t = 0; t < tasks; ++t)
+        if (taskParent_[t] != kNone)
+            ++childStart[taskParent_[t] + 1];
+    for (std::size_t t = 0; t < tasks; ++t)
+        childStart[t + 1] += childStart[t];
+    {
+        std::vector<std::uint32_t> next(childStart.begin(), childStart.end() - 1);
+        for (std::size_t t = 0; t < tasks; ++t)
+            if (taskParent_[t] != kNone)
+                children[next[taskParent_[t]]++] = static_cast<std::uint32_t>(t);
+    }
+
+    for (const bool isForward : {true, false}) {
+        std::vector<std::uint32_t> waits =
+            isForward ? taskWaits_ : std::vector<std::uint32_t>(tasks, 0);
+        std::vector<std::uint32_t> ready;
+        for (std::size_t t = 0; t < tasks; ++t)
+            if (isForward ? waits[t] == 0 : taskParent_[t] == kNone)
+                ready.push_back(static_cast<std::uint32_t>(t));
+        std::mutex mutex;
+        std::size_t remaining = tasks;
+        auto loop = [&](Eigen::VectorXd& t) {
+            for (;;) {
+                std::uint32_t task = kNone;
+                {
+                    std::lock_guard<std::mutex> lock(mutex);
+                    if (remaining == 0)
+                        return;
+                    if (!ready.empty()) {
+                        task = ready.back();
+                        ready.pop_back();
+                    }
+                }
+                if (task == kNone) {
+                    std::this_thread::yield();
+                    continue;
+                }
+                if (isForward)
+                    for (std::uint32_t k = taskStart_[task]; k < taskStart_[task + 1]; ++k)
+                        forward(taskSupers_[k], t);
+                else
+                    for (std::uint32_t k = taskStart_[task + 1]; k-- > taskStart_[task];)
+                        backward(taskSupers_[k], t);
+                std::lock_guard<std::mutex> lock(mutex);
+                --remaining;
+                if (isForward) {
+                    const std::uint32_t up = taskParent_[task];
+                    if (up != kNone && --waits[up] == 0)
+                        ready.push_back(up);
+                } else {
+                    for (std::uint32_t c = childStart[task]; c < childStart[task + 1]; ++c)
+                        ready.push_back(children[c]);
+                }
+            }
+        };
+        pool.parallelFor(threads, [&](std::size_t begin, std::size_t end, std::size_t) {
+            for (std::size_t w = begin; w < end; ++w)
+                loop(scratch[w]);
+        });
     }
     for (std::size_t k = 0; k < dimension_; ++k)
         b[static_cast<std::size_t>(perm_[k])] = y[static_cast<Eigen::Index>(k)];

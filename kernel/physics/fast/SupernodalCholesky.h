@@ -63,8 +63,9 @@ class SupernodalCholesky {
                                  ThreadPool* pool = nullptr);
 
     /// Solves A x = b in place for the last successful factorization. b holds 3 * nodes()
-    /// entries, node-major (x, y, z of node 0, then node 1, ...).
-    void solve(std::span<double> b) const;
+    /// entries, node-major (x, y, z of node 0, then node 1, ...). With a pool, independent
+    /// subtrees are solved on its threads (same bits); one solve at a time per object.
+    void solve(std::span<double> b, ThreadPool* pool = nullptr) const;
 
     /// Size of the factor: stored entries of L (supernodal, some explicit zeros included).
     std::size_t factorEntries() const { return values_.size(); }
@@ -130,6 +131,12 @@ class SupernodalCholesky {
     std::vector<std::uint32_t> splitStart_;
     std::vector<std::uint32_t> splitColumns_;
     std::size_t sharedSupernodes_ = 0;
+
+    /// The parallel solve: the products L21 y of the forward substitution, supernode s's at
+    /// belowStart_[s] in the scratch (each pulled by the supernodes holding its rows).
+    void solveParallel(std::span<double> b, ThreadPool& pool) const;
+    std::vector<std::int64_t> belowStart_;
+    mutable std::vector<double> belowProducts_;
 
     HugePageArray values_; ///< the factor's dense blocks
     std::vector<Worker> workers_;
