@@ -59,6 +59,7 @@ constexpr std::int64_t kRegisterRows = Eigen::internal::gebp_traits<double, doub
 // Eigen computes a product coefficient by coefficient (other operations) when its rows, columns
 // and depth sum to less than this (EIGEN_GEMM_TO_COEFFBASED_THRESHOLD).
 constexpr std::int64_t kCoefficientProduct = 20;
+static_assert(kSharedRows % kRegisterRows == 0, "row ranges must start at register blocks");
 
 /// CHOLMOD's workspace for the duration of an analysis.
 class CholmodCommon {
