@@ -104,7 +104,7 @@ TEST_CASE("supernodal Cholesky: the same bits with 1 and 2 threads", "[fast]") {
     REQUIRE(two.factorize(p.values, 0.0, &pool));
     std::vector<double> x(3 * p.nodes, 1.0), y = x;
     one.solve(x);
-    two.solve(y);
+    two.solve(y, &pool);
     CHECK(std::memcmp(x.data(), y.data(), x.size() * sizeof(double)) == 0);
 }
 
@@ -125,7 +125,7 @@ TEST_CASE("supernodal Cholesky with a geometric ordering: solves like a dense on
     Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(p.dense.rows(), -1, 2);
     std::vector<double> x(b.data(), b.data() + b.size()), y = x;
     one.solve(x);
-    two.solve(y);
+    two.solve(y, &pool);
     const Eigen::Map<Eigen::VectorXd> solution(x.data(), b.size());
     CHECK((p.dense * solution - b).cwiseAbs().maxCoeff() < 1e-10);
     CHECK(std::memcmp(x.data(), y.data(), x.size() * sizeof(double)) == 0);
@@ -141,4 +141,33 @@ TEST_CASE("supernodal Cholesky refuses a matrix that is not positive definite", 
     CHECK_FALSE(cholesky.factorize(p.values, 0.0));
     p.values[9 * 50 + 4] = -1;
     CHECK(cholesky.factorize(p.values, 1e3)); // a large enough shift makes it definite
+}
+
+TEST_CASE("supernodal Cholesky: shared supernodes give the same bits on 1 and 2 threads",
+          "[fast]") {
+    // Grids whose top separators are wide enough to be shared, of several widths (so that the
+    // column and row ranges fall at different places of the products' register blocks).
+    for (auto [rows, columns] :
+         {std::pair{40, 70}, std::pair{45, 45}, std::pair{37, 53}, std::pair{80, 33}}) {
+        const Problem p = gridProblem(rows, columns, 13);
+        SupernodalCholesky one, two;
+        one.analyse(p.nodes, p.pairs);
+        two.analyse(p.nodes, p.pairs);
+        INFO(rows << " x " << columns << " nodes");
+        REQUIRE(two.sharedSupernodes() > 0);
+        ThreadPool pool(2);
+        for (int repeat = 0; repeat < 3; ++repeat) {
+            REQUIRE(one.factorize(p.values, 0.5 * repeat));
+            REQUIRE(two.factorize(p.values, 0.5 * repeat, &pool));
+            Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(p.dense.rows(), -1, 2);
+            std::vector<double> x(b.data(), b.data() + b.size()), y = x;
+            one.solve(x);
+            two.solve(y, &pool);
+            CHECK(std::memcmp(x.data(), y.data(), x.size() * sizeof(double)) == 0);
+            if (repeat == 0) {
+                const Eigen::Map<Eigen::VectorXd> solution(x.data(), b.size());
+                CHECK((p.dense * solution - b).cwiseAbs().maxCoeff() < 1e-10);
+            }
+        }
+    }
 }

@@ -468,7 +468,7 @@ void NewtonRun::solve() {
         rhs_[3 * f + 1] = F.y;
         rhs_[3 * f + 2] = F.z;
     }
-    analysis_.cholesky.solve(rhs_);
+    analysis_.cholesky.solve(rhs_, pool_.get());
     for (std::size_t f = 0; f < freeCount; ++f)
         step_[analysis_.freeKnots[f]] = Vec3{rhs_[3 * f], rhs_[3 * f + 1], rhs_[3 * f + 2]};
     stats_.solveSeconds += secondsSince(t0);

@@ -11,6 +11,7 @@
 #include <atomic>
 #include <cassert>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -41,6 +42,24 @@ constexpr std::size_t kMetisNodes = 2000;
 // kRelaxZeros[0] and [1]; any while under [2].
 constexpr std::size_t kRelaxNodes[3] = {1, 5, 16};
 constexpr double kRelaxZeros[3] = {0.8, 0.1, 0.05};
+// A supernode that is a task by itself and has at least this many columns is shared by the
+// threads of a pool (measured on the tube benches: smaller ones do not pay for the hand-over),
+// its columns in ranges of about kSharedWidth, its rows below the diagonal block in ranges of at
+// least kSharedRows.
+constexpr std::int64_t kSharedColumns = 96;
+constexpr std::int64_t kSharedWidth = 48;
+constexpr std::int64_t kSharedRows = 96;
+// Eigen's register blocks for double products: a GEMM computes each output column inside a group
+// of kRegisterColumns (the last ones of a product one at a time) and each output row inside a
+// group of kRegisterRows (the last ones in smaller groups). Splitting a product or a triangular
+// solve at multiples of these (from its first column or row) leaves every entry's operations
+// as they are in the whole.
+constexpr std::int64_t kRegisterColumns = Eigen::internal::gebp_traits<double, double>::nr;
+constexpr std::int64_t kRegisterRows = Eigen::internal::gebp_traits<double, double>::mr;
+// Eigen computes a product coefficient by coefficient (other operations) when its rows, columns
+// and depth sum to less than this (EIGEN_GEMM_TO_COEFFBASED_THRESHOLD).
+constexpr std::int64_t kCoefficientProduct = 20;
+static_assert(kSharedRows % kRegisterRows == 0, "row ranges must start at register blocks");
 
 /// CHOLMOD's workspace for the duration of an analysis.
 class CholmodCommon {
@@ -69,6 +88,69 @@ class CholmodCommon {
 }
 
 } // namespace
+
+/// The threads of one factorization's schedule, for sharing a supernode: its owner publishes
+/// a job (a count of ranges and what to do with one), any idle thread joins and claims ranges,
+/// and the owner returns when all are done. One job at a time; an owner that finds the slot
+/// taken runs its ranges alone. Who runs a range never changes what it computes.
+struct SupernodalCholesky::Team {
+    using Body = std::function<void(std::size_t, Worker&)>;
+    std::mutex& mutex; ///< the schedule's; guards body and count
+    const Body* body = nullptr;
+    std::size_t count = 0;
+    std::atomic<std::size_t> next{0}, done{0};
+    std::atomic<int> active{0}; ///< threads that joined the current job and may still claim
+
+    explicit Team(std::mutex& m) : mutex(m) {}
+
+    void claim(const Body& job, std::size_t jobCount, Worker& worker) {
+        for (;;) {
+            const std::size_t range = next.fetch_add(1, std::memory_order_relaxed);
+            if (range >= jobCount)
+                return;
+            job(range, worker);
+            done.fetch_add(1, std::memory_order_release);
+        }
+    }
+
+    void run(std::size_t jobCount, const Body& job, Worker& worker) {
+        {
+            std::lock_guard<std::mutex> lock(mutex);
+            if (!body) {
+                body = &job;
+                count = jobCount;
+                next.store(0, std::memory_order_relaxed);
+                done.store(0, std::memory_order_relaxed);
+            } else {
+                for (std::size_t range = 0; range < jobCount; ++range)
+                    job(range, worker);
+                return;
+            }
+        }
+        claim(job, jobCount, worker);
+        while (done.load(std::memory_order_acquire) < jobCount)
+            std::this_thread::yield();
+        {
+            std::lock_guard<std::mutex> lock(mutex);
+            body = nullptr;
+        }
+        while (active.load(std::memory_order_acquire) > 0)
+            std::this_thread::yield();
+    }
+
+    /// Called with the mutex held: joins the current job, if any (then call help() unlocked).
+    const Body* join(std::size_t& jobCount) {
+        if (body) {
+            active.fetch_add(1, std::memory_order_relaxed);
+            jobCount = count;
+        }
+        return body;
+    }
+    void help(const Body& job, std::size_t jobCount, Worker& worker) {
+        claim(job, jobCount, worker);
+        active.fetch_sub(1, std::memory_order_release);
+    }
+};
 
 void SupernodalCholesky::analyse(std::size_t nodes,
                                  std::span<const std::array<std::uint32_t, 2>> pairs,
@@ -340,14 +422,113 @@ void SupernodalCholesky::analyse(std::size_t nodes,
         }
     }
 
+    // Shared supernodes: tasks of one supernode, wide enough; column ranges of whole nodes.
+    splitStart_.assign(supers + 1, 0);
+    splitColumns_.clear();
+    sharedSupernodes_ = 0;
+    for (std::size_t t = 0; t < tasks; ++t) {
+        if (taskStart_[t + 1] - taskStart_[t] != 1)
+            continue;
+        const std::uint32_t s = taskSupers_[taskStart_[t]];
+        const std::int64_t cols = colCount(s);
+        if (cols < kSharedColumns)
+            continue;
+        const std::int64_t ranges =
+            std::max<std::int64_t>(2, (cols + kSharedWidth / 2) / kSharedWidth);
+        for (std::int64_t r = 0; r <= ranges; ++r)
+            splitColumns_.push_back(static_cast<std::uint32_t>(3 * (cols / 3 * r / ranges) +
+                                                               (r == ranges ? cols % 3 : 0)));
+        splitStart_[s + 1] = static_cast<std::uint32_t>(ranges + 1);
+        ++sharedSupernodes_;
+    }
+    for (std::size_t s = 0; s < supers; ++s)
+        splitStart_[s + 1] += splitStart_[s];
+
+    belowStart_.assign(supers + 1, 0);
+    for (std::size_t s = 0; s < supers; ++s)
+        belowStart_[s + 1] = belowStart_[s] + rowCount(s) - colCount(s);
+
     // Every block is zeroed and filled by its factorization before anything reads it.
     values_.allocate(static_cast<std::size_t>(valueStart_[supers]));
     workers_.clear();
     analysed_ = true;
 }
 
+void SupernodalCholesky::applyUpdates(std::size_t s, std::int64_t columnBegin,
+                                      std::int64_t columnEnd, const std::int64_t* position,
+                                      Worker& worker) {
+    const std::int64_t cols = superStart_[s + 1] - superStart_[s];
+    const std::int64_t rowCount = rowStart_[s + 1] - rowStart_[s];
+    double* block = values_.data() + valueStart_[s];
+    // Left-looking: subtract L_d[rows from begin on] * L_d[begin, end)^T for every descendant d
+    // with rows among this supernode's columns, in increasing d (the fixed order of the sum).
+    // A range of the columns takes from each update the product's columns that land in it.
+    for (std::int64_t u = updateStart_[s]; u < updateStart_[s + 1]; ++u) {
+        const Update& update = updates_[static_cast<std::size_t>(u)];
+        const std::size_t d = update.source;
+        const std::int64_t sourceRows = rowStart_[d + 1] - rowStart_[d];
+        const std::int64_t sourceCols = superStart_[d + 1] - superStart_[d];
+        ConstMatrixMap source(values_.data() + valueStart_[d], sourceRows, sourceCols);
+        const std::int64_t m = sourceRows - update.begin, k = update.end - update.begin;
+        const std::int64_t* sourceRowIndex = rows_.data() + rowStart_[d] + update.begin;
+        std::int64_t j0 = 0, j1 = k; // the product's columns that land in the range
+        if (columnBegin > 0 || columnEnd < cols) {
+            j0 =
+                std::lower_bound(sourceRowIndex, sourceRowIndex + k, superStart_[s] + columnBegin) -
+                sourceRowIndex;
+            j1 = std::lower_bound(sourceRowIndex + j0, sourceRowIndex + k,
+                                  superStart_[s] + columnEnd) -
+                 sourceRowIndex;
+            if (j0 == j1)
+                continue;
+        }
+        // The product's columns [a, b) that are computed: all, or those asked for widened to
+        // whole register blocks, at least 2 (Eigen computes a one-column product as a GEMV), and
+        // all again where Eigen would compute the part coefficient by coefficient.
+        std::int64_t a = 0, b = k;
+        if (j0 > 0 || j1 < k) {
+            a = j0 - j0 % kRegisterColumns;
+            b = std::min(k, (j1 + kRegisterColumns - 1) / kRegisterColumns * kRegisterColumns);
+            if (b - a < 2)
+                a = std::max<std::int64_t>(0, a - kRegisterColumns);
+            if (m + k + sourceCols < kCoefficientProduct ||
+                m + (b - a) + sourceCols < kCoefficientProduct) {
+                a = 0;
+                b = k;
+            }
+        }
+        if (worker.product.size() < static_cast<std::size_t>(m * (b - a)))
+            worker.product.resize(static_cast<std::size_t>(m * (b - a)));
+        MatrixMap product(worker.product.data(), m, b - a);
+        product.noalias() = source.middleRows(update.begin, m) *
+                            source.middleRows(update.begin + a, b - a).transpose();
+        // Each entry of the product is subtracted from its place in the block once, in the same
+        // order whichever way: the places are looked up once per update, and where they are
+        // consecutive (the usual case: a descendant's rows are runs of whole nodes) a column's
+        // subtraction is one contiguous pass.
+        if (worker.place.size() < static_cast<std::size_t>(m))
+            worker.place.resize(static_cast<std::size_t>(m));
+        std::int64_t* place = worker.place.data();
+        for (std::int64_t ii = 0; ii < m; ++ii)
+            place[ii] = position[static_cast<std::size_t>(sourceRowIndex[ii])];
+        const bool consecutive = place[m - 1] - place[0] == m - 1;
+        for (std::int64_t jj = j0; jj < j1; ++jj) {
+            double* column = block + (sourceRowIndex[jj] - superStart_[s]) * rowCount;
+            const double* p = product.data() + (jj - a) * m;
+            if (consecutive) {
+                double* to = column + place[0];
+                for (std::int64_t ii = jj; ii < m; ++ii)
+                    to[ii] -= p[ii];
+            } else {
+                for (std::int64_t ii = jj; ii < m; ++ii)
+                    column[place[ii]] -= p[ii];
+            }
+        }
+    }
+}
+
 bool SupernodalCholesky::factorSupernode(std::size_t s, std::span<const double> values,
-                                         double shift, Worker& worker) {
+                                         double shift, Worker& worker, Team* team) {
     const std::int64_t cols = superStart_[s + 1] - superStart_[s];
     const std::int64_t rowCount = rowStart_[s + 1] - rowStart_[s];
     double* block = values_.data() + valueStart_[s];
@@ -381,43 +562,17 @@ bool SupernodalCholesky::factorSupernode(std::size_t s, std::span<const double> 
     for (std::int64_t i = 0; i < rowCount; ++i)
         worker.position[static_cast<std::size_t>(rows[i])] = i;
 
-    // Left-looking: subtract L_d[rows from begin on] * L_d[begin, end)^T for every descendant d
-    // with rows among this supernode's columns, in increasing d (the fixed order of the sum).
-    for (std::int64_t u = updateStart_[s]; u < updateStart_[s + 1]; ++u) {
-        const Update& update = updates_[static_cast<std::size_t>(u)];
-        const std::size_t d = update.source;
-        const std::int64_t sourceRows = rowStart_[d + 1] - rowStart_[d];
-        const std::int64_t sourceCols = superStart_[d + 1] - superStart_[d];
-        ConstMatrixMap source(values_.data() + valueStart_[d], sourceRows, sourceCols);
-        const std::int64_t m = sourceRows - update.begin, k = update.end - update.begin;
-        if (worker.product.size() < static_cast<std::size_t>(m * k))
-            worker.product.resize(static_cast<std::size_t>(m * k));
-        MatrixMap product(worker.product.data(), m, k);
-        product.noalias() = source.middleRows(update.begin, m) *
-                            source.middleRows(update.begin, k).transpose();
-        // Each entry of the product is subtracted from its place in the block once, in the same
-        // order whichever way: the places are looked up once per update, and where they are
-        // consecutive (the usual case: a descendant's rows are runs of whole nodes) a column's
-        // subtraction is one contiguous pass.
-        const std::int64_t* sourceRowIndex = rows_.data() + rowStart_[d] + update.begin;
-        if (worker.place.size() < static_cast<std::size_t>(m))
-            worker.place.resize(static_cast<std::size_t>(m));
-        std::int64_t* place = worker.place.data();
-        for (std::int64_t ii = 0; ii < m; ++ii)
-            place[ii] = worker.position[static_cast<std::size_t>(sourceRowIndex[ii])];
-        const bool consecutive = place[m - 1] - place[0] == m - 1;
-        for (std::int64_t jj = 0; jj < k; ++jj) {
-            double* column = block + (sourceRowIndex[jj] - superStart_[s]) * rowCount;
-            const double* p = product.data() + jj * m;
-            if (consecutive) {
-                double* to = column + place[0];
-                for (std::int64_t ii = jj; ii < m; ++ii)
-                    to[ii] -= p[ii];
-            } else {
-                for (std::int64_t ii = jj; ii < m; ++ii)
-                    column[place[ii]] -= p[ii];
-            }
-        }
+    const std::uint32_t* split = splitColumns_.data() + splitStart_[s];
+    const std::size_t boundaries = splitStart_[s + 1] - splitStart_[s];
+    const bool shared = team && boundaries > 1;
+    if (!shared) {
+        applyUpdates(s, 0, cols, worker.position.data(), worker);
+    } else {
+        const std::int64_t* position = worker.position.data();
+        const Team::Body job = [&](std::size_t r, Worker& w) {
+            applyUpdates(s, split[r], split[r + 1], position, w);
+        };
+        team->run(boundaries - 1, job, worker);
     }
 
     StridedRef diagonal = l.topRows(cols);
@@ -427,9 +582,25 @@ bool SupernodalCholesky::factorSupernode(std::size_t s, std::span<const double> 
         ok = std::isfinite(diagonal(k, k)) && diagonal(k, k) > 0;
     if (!ok)
         return false;
-    if (rowCount > cols)
+    const std::int64_t below = rowCount - cols;
+    if (below == 0)
+        return true;
+    // L21 = A21 L11^-T, row by row; a shared supernode's rows in ranges of whole register blocks.
+    const std::int64_t rangeRows =
+        shared ? std::max(kSharedRows,
+                          (below + 3 * kRegisterRows - 1) / (3 * kRegisterRows) * kRegisterRows)
+               : below;
+    const auto solveRows = [&](std::size_t r, Worker&) {
+        const std::int64_t first = static_cast<std::int64_t>(r) * rangeRows;
+        const std::int64_t count = std::min(rangeRows, below - first);
         diagonal.transpose().triangularView<Eigen::Upper>().solveInPlace<Eigen::OnTheRight>(
-            l.bottomRows(rowCount - cols));
+            l.middleRows(cols + first, count));
+    };
+    const auto rowRanges = static_cast<std::size_t>((below + rangeRows - 1) / rangeRows);
+    if (rowRanges > 1)
+        team->run(rowRanges, solveRows, worker);
+    else
+        solveRows(0, worker);
     return true;
 }
 
@@ -456,11 +627,14 @@ void SupernodalCholesky::runSchedule(std::span<const double> values, double shif
         if (waits[t] == 0)
             ready.push_back(static_cast<std::uint32_t>(t));
     std::mutex mutex;
+    Team team(mutex);
     std::size_t remaining = tasks;
     std::atomic<bool> failed{false};
     auto loop = [&](Worker& worker) {
         for (;;) {
             std::uint32_t task = kNone;
+            const Team::Body* job = nullptr;
+            std::size_t jobCount = 0;
             {
                 std::lock_guard<std::mutex> lock(mutex);
                 if (remaining == 0 || failed.load(std::memory_order_relaxed))
@@ -468,14 +642,20 @@ void SupernodalCholesky::runSchedule(std::span<const double> values, double shif
                 if (!ready.empty()) {
                     task = ready.back();
                     ready.pop_back();
+                } else {
+                    job = team.join(jobCount);
                 }
+            }
+            if (job) {
+                team.help(*job, jobCount, worker);
+                continue;
             }
             if (task == kNone) {
                 std::this_thread::yield();
                 continue;
             }
             for (std::uint32_t k = taskStart_[task]; k < taskStart_[task + 1]; ++k)
-                if (!factorSupernode(taskSupers_[k], values, shift, worker)) {
+                if (!factorSupernode(taskSupers_[k], values, shift, worker, &team)) {
                     failed.store(true, std::memory_order_relaxed);
                     break;
                 }
@@ -502,8 +682,10 @@ bool SupernodalCholesky::factorize(std::span<const double> values, double shift,
     return !failed_;
 }
 
-void SupernodalCholesky::solve(std::span<double> b) const {
+void SupernodalCholesky::solve(std::span<double> b, ThreadPool* pool) const {
     assert(analysed_ && !failed_ && b.size() == dimension_);
+    if (pool && pool->size() > 1 && taskStart_.size() > 2)
+        return solveParallel(b, *pool);
     const std::size_t supers = superStart_.size() - 1;
     Eigen::VectorXd y(static_cast<Eigen::Index>(dimension_));
     for (std::size_t k = 0; k < dimension_; ++k)
@@ -540,6 +722,127 @@ void SupernodalCholesky::solve(std::span<double> b) const {
             part.noalias() -= l.bottomRows(below).transpose() * t;
         }
         l.topRows(cols).transpose().triangularView<Eigen::Upper>().solveInPlace(part);
+    }
+    for (std::size_t k = 0; k < dimension_; ++k)
+        b[static_cast<std::size_t>(perm_[k])] = y[static_cast<Eigen::Index>(k)];
+}
+
+// The same operations as solve() without a pool, per entry in the same order: the forward
+// substitution pulls, into a supernode's entries, the products of the descendants whose rows are
+// among its columns in increasing descendant order (the order in which the sequential solve
+// pushes them there); the backward one reads only its ancestors' finished entries. Tasks run
+// as in the factorization, forward children first, backward parents first.
+void SupernodalCholesky::solveParallel(std::span<double> b, ThreadPool& pool) const {
+    const std::size_t supers = superStart_.size() - 1;
+    const std::size_t tasks = taskStart_.size() - 1;
+    const auto threads = static_cast<std::size_t>(pool.size());
+    Eigen::VectorXd y(static_cast<Eigen::Index>(dimension_));
+    for (std::size_t k = 0; k < dimension_; ++k)
+        y[static_cast<Eigen::Index>(k)] = b[static_cast<std::size_t>(perm_[k])];
+    if (belowProducts_.size() != static_cast<std::size_t>(belowStart_[supers]))
+        belowProducts_.resize(static_cast<std::size_t>(belowStart_[supers]));
+    std::vector<Eigen::VectorXd> scratch(threads,
+                                         Eigen::VectorXd(static_cast<Eigen::Index>(maxRows_)));
+
+    auto forward = [&](std::size_t s, Eigen::VectorXd& t) {
+        const std::int64_t cols = superStart_[s + 1] - superStart_[s];
+        const std::int64_t rowCount = rowStart_[s + 1] - rowStart_[s];
+        for (std::int64_t u = updateStart_[s]; u < updateStart_[s + 1]; ++u) {
+            const Update& update = updates_[static_cast<std::size_t>(u)];
+            const std::size_t d = update.source;
+            const std::int64_t* sourceRows = rows_.data() + rowStart_[d];
+            const double* product =
+                belowProducts_.data() + belowStart_[d] - (superStart_[d + 1] - superStart_[d]);
+            for (std::uint32_t i = update.begin; i < update.end; ++i)
+                y[sourceRows[i]] -= product[i];
+        }
+        ConstMatrixMap l(values_.data() + valueStart_[s], rowCount, cols);
+        auto part = y.segment(superStart_[s], cols);
+        l.topRows(cols).triangularView<Eigen::Lower>().solveInPlace(part);
+        const std::int64_t below = rowCount - cols;
+        if (below == 0)
+            return;
+        auto head = t.head(below);
+        head.noalias() = l.bottomRows(below) * part;
+        std::copy(head.data(), head.data() + below, belowProducts_.data() + belowStart_[s]);
+    };
+    auto backward = [&](std::size_t s, Eigen::VectorXd& t) {
+        const std::int64_t cols = superStart_[s + 1] - superStart_[s];
+        const std::int64_t rowCount = rowStart_[s + 1] - rowStart_[s];
+        ConstMatrixMap l(values_.data() + valueStart_[s], rowCount, cols);
+        auto part = y.segment(superStart_[s], cols);
+        const std::int64_t below = rowCount - cols;
+        if (below > 0) {
+            auto head = t.head(below);
+            const std::int64_t* rows = rows_.data() + rowStart_[s] + cols;
+            for (std::int64_t i = 0; i < below; ++i)
+                head[i] = y[rows[i]];
+            part.noalias() -= l.bottomRows(below).transpose() * head;
+        }
+        l.topRows(cols).transpose().triangularView<Eigen::Upper>().solveInPlace(part);
+    };
+
+    // Backward, a task is ready when its parent task is done.
+    std::vector<std::uint32_t> childStart(tasks + 1, 0), children(tasks);
+    for (std::size_t t = 0; t < tasks; ++t)
+        if (taskParent_[t] != kNone)
+            ++childStart[taskParent_[t] + 1];
+    for (std::size_t t = 0; t < tasks; ++t)
+        childStart[t + 1] += childStart[t];
+    {
+        std::vector<std::uint32_t> next(childStart.begin(), childStart.end() - 1);
+        for (std::size_t t = 0; t < tasks; ++t)
+            if (taskParent_[t] != kNone)
+                children[next[taskParent_[t]]++] = static_cast<std::uint32_t>(t);
+    }
+
+    for (const bool isForward : {true, false}) {
+        std::vector<std::uint32_t> waits =
+            isForward ? taskWaits_ : std::vector<std::uint32_t>(tasks, 0);
+        std::vector<std::uint32_t> ready;
+        for (std::size_t t = 0; t < tasks; ++t)
+            if (isForward ? waits[t] == 0 : taskParent_[t] == kNone)
+                ready.push_back(static_cast<std::uint32_t>(t));
+        std::mutex mutex;
+        std::size_t remaining = tasks;
+        auto loop = [&](Eigen::VectorXd& t) {
+            for (;;) {
+                std::uint32_t task = kNone;
+                {
+                    std::lock_guard<std::mutex> lock(mutex);
+                    if (remaining == 0)
+                        return;
+                    if (!ready.empty()) {
+                        task = ready.back();
+                        ready.pop_back();
+                    }
+                }
+                if (task == kNone) {
+                    std::this_thread::yield();
+                    continue;
+                }
+                if (isForward)
+                    for (std::uint32_t k = taskStart_[task]; k < taskStart_[task + 1]; ++k)
+                        forward(taskSupers_[k], t);
+                else
+                    for (std::uint32_t k = taskStart_[task + 1]; k-- > taskStart_[task];)
+                        backward(taskSupers_[k], t);
+                std::lock_guard<std::mutex> lock(mutex);
+                --remaining;
+                if (isForward) {
+                    const std::uint32_t up = taskParent_[task];
+                    if (up != kNone && --waits[up] == 0)
+                        ready.push_back(up);
+                } else {
+                    for (std::uint32_t c = childStart[task]; c < childStart[task + 1]; ++c)
+                        ready.push_back(children[c]);
+                }
+            }
+        };
+        pool.parallelFor(threads, [&](std::size_t begin, std::size_t end, std::size_t) {
+            for (std::size_t w = begin; w < end; ++w)
+                loop(scratch[w]);
+        });
     }
     for (std::size_t k = 0; k < dimension_; ++k)
         b[static_cast<std::size_t>(perm_[k])] = y[static_cast<Eigen::Index>(k)];

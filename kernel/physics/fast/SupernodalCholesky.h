@@ -12,7 +12,12 @@
 //
 // Determinism: every supernode pulls the updates of its descendants in a fixed order, whatever
 // thread runs it and whenever, so the factor and the solutions are bit-identical for any number
-// of threads.
+// of threads. A large supernode near the top of the tree (where one supernode at a time is ready)
+// is shared by the threads: its columns are split into fixed ranges (fixed by the analysis, not
+// by the thread count), each range pulls every update in the same order, and the rows below the
+// diagonal block are solved in fixed row ranges; every entry is computed by the same operations
+// as without the split (the product and solve kernels are split only along their output, at
+// boundaries of Eigen's register blocks), so the bits do not change.
 
 #include "physics/fast/HugePageArray.h"
 
@@ -58,14 +63,17 @@ class SupernodalCholesky {
                                  ThreadPool* pool = nullptr);
 
     /// Solves A x = b in place for the last successful factorization. b holds 3 * nodes()
-    /// entries, node-major (x, y, z of node 0, then node 1, ...).
-    void solve(std::span<double> b) const;
+    /// entries, node-major (x, y, z of node 0, then node 1, ...). With a pool, independent
+    /// subtrees are solved on its threads (same bits); one solve at a time per object.
+    void solve(std::span<double> b, ThreadPool* pool = nullptr) const;
 
     /// Size of the factor: stored entries of L (supernodal, some explicit zeros included).
     std::size_t factorEntries() const { return values_.size(); }
     /// Floating-point operations of one numeric factorization (CHOLMOD's count).
     double factorFlops() const { return flops_; }
     Ordering ordering() const { return ordering_; }
+    /// How many supernodes the last analysis marked to be shared by the threads of a pool.
+    std::size_t sharedSupernodes() const { return sharedSupernodes_; }
 
   private:
     struct Update {
@@ -79,9 +87,15 @@ class SupernodalCholesky {
         std::vector<std::int64_t> place;    ///< scratch: an update's rows' positions in its target
     };
 
-    /// Fills, updates and factors supernode s; false when its pivots are not all > 0.
+    struct Team;
+    /// Fills, updates and factors supernode s; false when its pivots are not all > 0. With a
+    /// team, a shared supernode's column and row ranges are handed to whichever threads join.
     bool factorSupernode(std::size_t s, std::span<const double> values, double shift,
-                         Worker& worker);
+                         Worker& worker, Team* team = nullptr);
+    /// Subtracts from supernode s's columns [columnBegin, columnEnd) (offsets in s) the updates
+    /// of its descendants, in increasing descendant order. position: row -> position in s.
+    void applyUpdates(std::size_t s, std::int64_t columnBegin, std::int64_t columnEnd,
+                      const std::int64_t* position, Worker& worker);
     void runSchedule(std::span<const double> values, double shift, ThreadPool* pool);
 
     bool analysed_ = false;
@@ -112,6 +126,17 @@ class SupernodalCholesky {
     std::vector<std::uint32_t> taskSupers_;
     std::vector<std::uint32_t> taskParent_;  ///< the task waiting for t, or UINT32_MAX
     std::vector<std::uint32_t> taskWaits_;   ///< how many tasks t waits for
+    // Shared supernodes: s's updates go by the column ranges between the boundaries
+    // splitColumns_[splitStart_[s] .. splitStart_[s+1]) (offsets in s; none: s is not shared).
+    std::vector<std::uint32_t> splitStart_;
+    std::vector<std::uint32_t> splitColumns_;
+    std::size_t sharedSupernodes_ = 0;
+
+    /// The parallel solve: the products L21 y of the forward substitution, supernode s's at
+    /// belowStart_[s] in the scratch (each pulled by the supernodes holding its rows).
+    void solveParallel(std::span<double> b, ThreadPool& pool) const;
+    std::vector<std::int64_t> belowStart_;
+    mutable std::vector<double> belowProducts_;
 
     HugePageArray values_; ///< the factor's dense blocks
     std::vector<Worker> workers_;
