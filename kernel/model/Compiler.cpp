@@ -3,6 +3,7 @@
 #include "model/Error.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <unordered_set>
@@ -129,7 +130,18 @@ class Builder {
         double length;
         double fraction;
     };
-    std::vector<std::vector<Upper>> uppers_;
+    /// The (at most two) knots a knot hangs from, in the order the bars were added.
+    struct Uppers {
+        std::array<Upper, 2> items;
+        std::uint8_t count = 0;
+        const Upper* begin() const { return items.data(); }
+        const Upper* end() const { return items.data() + count; }
+        std::size_t size() const { return count; }
+        bool empty() const { return count == 0; }
+        const Upper& operator[](std::size_t i) const { return items[i]; }
+        void push_back(const Upper& u) { items[count++] = u; }
+    };
+    std::vector<Uppers> uppers_;
     std::vector<PieceId> massOwner_;
 
     std::size_t slot(const Piece& p, int row, int column) const { return slots_.slot(p.id, row, column, p.columns); }
@@ -156,7 +168,9 @@ class Builder {
     void assignIndices() {
         indexOfRoot_.assign(slots_.size(), kUnassigned);
         MassSpringSystem& sys = out_.system;
-        std::vector<std::vector<KnotRef>> refs;
+        // Every (piece, row, column) with its knot, in visiting order; then grouped by knot.
+        std::vector<std::pair<std::uint32_t, KnotRef>> visits;
+        std::uint32_t n = 0;
         for (PieceId id : slots_.order()) {
             const Piece& p = s_.pieces.at(id);
             PieceKnots& pk = out_.pieces[id];
@@ -167,25 +181,24 @@ class Builder {
                 for (int c = 0; c < p.columns; ++c) {
                     const std::size_t root = slots_.find(slot(p, r, c));
                     if (indexOfRoot_[root] == kUnassigned) {
-                        indexOfRoot_[root] = std::uint32_t(refs.size());
-                        refs.emplace_back();
+                        indexOfRoot_[root] = n++;
                         massOwner_.push_back(id);
                     }
                     const std::uint32_t k = indexOfRoot_[root];
                     pk.index[std::size_t(r) * p.columns + c] = k;
-                    refs[k].push_back({id, r, c});
+                    visits.push_back({k, KnotRef{id, r, c}});
                 }
         }
-        const std::size_t n = refs.size();
         sys.position.assign(n, Vec3{});
         sys.mass.assign(n, 0.0);
         sys.fixed.assign(n, 0);
         sys.hold.assign(n, RailHold{});
-        sys.refStart.assign(n + 1, 0);
-        for (std::size_t k = 0; k < n; ++k) {
-            sys.refStart[k + 1] = sys.refStart[k] + std::uint32_t(refs[k].size());
-            sys.refs.insert(sys.refs.end(), refs[k].begin(), refs[k].end());
-        }
+        sys.refStart.assign(std::size_t(n) + 1, 0);
+        for (const auto& visit : visits) ++sys.refStart[visit.first + 1];
+        for (std::size_t k = 0; k < n; ++k) sys.refStart[k + 1] += sys.refStart[k];
+        sys.refs.resize(visits.size());
+        std::vector<std::uint32_t> next(sys.refStart.begin(), sys.refStart.end() - 1);
+        for (const auto& visit : visits) sys.refs[next[visit.first]++] = visit.second;
         uppers_.assign(n, {});
     }
 
@@ -230,20 +243,27 @@ class Builder {
         fixRailRows();
         const std::size_t n = out_.system.knotCount();
         std::vector<std::uint32_t> waiting(n, 0);
-        std::vector<std::vector<std::uint32_t>> lowers(n);
+        // lowers of knot j: lowers[lowerStart[j] .. lowerStart[j + 1]), in increasing k
+        std::vector<std::uint32_t> lowerStart(n + 1, 0);
         for (std::uint32_t k = 0; k < n; ++k) {
             if (out_.system.fixed[k]) continue;
             waiting[k] = std::uint32_t(uppers_[k].size());
-            for (const Upper& u : uppers_[k]) lowers[u.knot].push_back(k);
+            for (const Upper& u : uppers_[k]) ++lowerStart[u.knot + 1];
         }
+        for (std::size_t j = 0; j < n; ++j) lowerStart[j + 1] += lowerStart[j];
+        std::vector<std::uint32_t> lowers(lowerStart[n]);
+        std::vector<std::uint32_t> filled(lowerStart.begin(), lowerStart.end() - 1);
+        for (std::uint32_t k = 0; k < n; ++k)
+            if (!out_.system.fixed[k])
+                for (const Upper& u : uppers_[k]) lowers[filled[u.knot]++] = k;
         std::vector<std::uint32_t> queue;
         for (std::uint32_t k = 0; k < n; ++k)
             if (out_.system.fixed[k] || waiting[k] == 0) queue.push_back(k);
         for (std::size_t i = 0; i < queue.size(); ++i) {
             const std::uint32_t k = queue[i];
             if (!out_.system.fixed[k] && !uppers_[k].empty()) placeFromUppers(k);
-            for (std::uint32_t lower : lowers[k])
-                if (--waiting[lower] == 0) queue.push_back(lower);
+            for (std::uint32_t at = lowerStart[k]; at < lowerStart[k + 1]; ++at)
+                if (--waiting[lowers[at]] == 0) queue.push_back(lowers[at]);
         }
     }
 
@@ -269,6 +289,7 @@ class Builder {
 
     void buildBars() {
         std::unordered_set<std::uint64_t> seen;
+        seen.reserve(2 * out_.system.knotCount());
         for (PieceId id : slots_.order()) {
             const Piece& p = s_.pieces.at(id);
             const PieceKnots& pk = out_.pieces.at(id);
