@@ -708,23 +708,29 @@ void SupernodalCholesky::solve(std::span<double> b, ThreadPool* pool) const {
             y[rows[i]] -= t[i];
     }
     // L^T x = y'
-    for (std::size_t s = supers; s-- > 0;) {
-        const std::int64_t cols = superStart_[s + 1] - superStart_[s];
-        const std::int64_t rowCount = rowStart_[s + 1] - rowStart_[s];
-        ConstMatrixMap l(values_.data() + valueStart_[s], rowCount, cols);
-        auto part = y.segment(superStart_[s], cols);
-        const std::int64_t below = rowCount - cols;
-        if (below > 0) {
-            auto t = scratch.head(below);
-            const std::int64_t* rows = rows_.data() + rowStart_[s] + cols;
-            for (std::int64_t i = 0; i < below; ++i)
-                t[i] = y[rows[i]];
-            part.noalias() -= l.bottomRows(below).transpose() * t;
-        }
-        l.topRows(cols).transpose().triangularView<Eigen::Upper>().solveInPlace(part);
-    }
+    for (std::size_t s = supers; s-- > 0;)
+        solveBackward(s, y.data(), scratch.data());
     for (std::size_t k = 0; k < dimension_; ++k)
         b[static_cast<std::size_t>(perm_[k])] = y[static_cast<Eigen::Index>(k)];
+}
+
+// Supernode s's part of L^T x = y': its entries of y minus its rows below times their (final)
+// entries, then its diagonal block's transposed triangle solved.
+void SupernodalCholesky::solveBackward(std::size_t s, double* yData, double* scratch) const {
+    const std::int64_t cols = superStart_[s + 1] - superStart_[s];
+    const std::int64_t rowCount = rowStart_[s + 1] - rowStart_[s];
+    ConstMatrixMap l(values_.data() + valueStart_[s], rowCount, cols);
+    Eigen::Map<Eigen::VectorXd> y(yData, static_cast<Eigen::Index>(dimension_));
+    auto part = y.segment(superStart_[s], cols);
+    const std::int64_t below = rowCount - cols;
+    if (below > 0) {
+        Eigen::Map<Eigen::VectorXd> t(scratch, below);
+        const std::int64_t* rows = rows_.data() + rowStart_[s] + cols;
+        for (std::int64_t i = 0; i < below; ++i)
+            t[i] = y[rows[i]];
+        part.noalias() -= l.bottomRows(below).transpose() * t;
+    }
+    l.topRows(cols).transpose().triangularView<Eigen::Upper>().solveInPlace(part);
 }
 
 // The same operations as solve() without a pool, per entry in the same order: the forward
@@ -766,21 +772,7 @@ void SupernodalCholesky::solveParallel(std::span<double> b, ThreadPool& pool) co
         head.noalias() = l.bottomRows(below) * part;
         std::copy(head.data(), head.data() + below, belowProducts_.data() + belowStart_[s]);
     };
-    auto backward = [&](std::size_t s, Eigen::VectorXd& t) {
-        const std::int64_t cols = superStart_[s + 1] - superStart_[s];
-        const std::int64_t rowCount = rowStart_[s + 1] - rowStart_[s];
-        ConstMatrixMap l(values_.data() + valueStart_[s], rowCount, cols);
-        auto part = y.segment(superStart_[s], cols);
-        const std::int64_t below = rowCount - cols;
-        if (below > 0) {
-            auto head = t.head(below);
-            const std::int64_t* rows = rows_.data() + rowStart_[s] + cols;
-            for (std::int64_t i = 0; i < below; ++i)
-                head[i] = y[rows[i]];
-            part.noalias() -= l.bottomRows(below).transpose() * head;
-        }
-        l.topRows(cols).transpose().triangularView<Eigen::Upper>().solveInPlace(part);
-    };
+    auto backward = [&](std::size_t s, Eigen::VectorXd& t) { solveBackward(s, y.data(), t.data()); };
 
     // Backward, a task is ready when its parent task is done.
     std::vector<std::uint32_t> childStart(tasks + 1, 0), children(tasks);

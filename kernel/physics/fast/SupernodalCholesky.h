@@ -135,6 +135,8 @@ class SupernodalCholesky {
     /// The parallel solve: the products L21 y of the forward substitution, supernode s's at
     /// belowStart_[s] in the scratch (each pulled by the supernodes holding its rows).
     void solveParallel(std::span<double> b, ThreadPool& pool) const;
+    /// Supernode s's part of L^T x = y' on the permuted right-hand side y (scratch: maxRows_).
+    void solveBackward(std::size_t s, double* y, double* scratch) const;
     std::vector<std::int64_t> belowStart_;
     mutable std::vector<double> belowProducts_;
 
