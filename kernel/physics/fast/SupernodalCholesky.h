@@ -76,6 +76,7 @@ class SupernodalCholesky {
     std::size_t sharedSupernodes() const { return sharedSupernodes_; }
 
   private:
+    static constexpr std::uint32_t kNone = UINT32_MAX; ///< no task / no parent
     struct Update {
         std::uint32_t source; ///< a descendant supernode
         std::uint32_t begin;  ///< its first row (index into its row list) inside the target's columns

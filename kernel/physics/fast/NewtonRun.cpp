@@ -1,0 +1,354 @@
+#include "physics/fast/NewtonRun.h"
+
+#include <algorithm>
+#include <cmath>
+#include <thread>
+
+namespace netsculpt::newton {
+
+NewtonRun::NewtonRun(MassSpringSystem& system, const RelaxOptions& options,
+                     NewtonAnalysis& analysis, NewtonStatistics& statistics,
+                     Clock::time_point start)
+    : system_(system), options_(options), analysis_(analysis), stats_(statistics), start_(start),
+      field_(analysis.field), x_(analysis.x), trial_(analysis.trial), force_(analysis.force),
+      step_(analysis.step), tension_(analysis.tension), kCompression_(analysis.kCompression),
+      barBlock_(analysis.barBlock), values_(analysis.values), rhs_(analysis.rhs),
+      barTerm_(analysis.barTerm), weightOf_(analysis.weightOf),
+      dampingUnit_(analysis.dampingUnit), bestX_(analysis.bestX) {
+    field_.setLoad(options.wind, 1.0);
+    windy_ = options.wind && options.wind->pressure > 0;
+    int threads = options.threads;
+    if (threads == 0) {
+        const std::size_t hardware = std::max(1u, std::thread::hardware_concurrency());
+        threads = static_cast<int>(
+            std::clamp<std::size_t>(field_.barCount() / kAutoBarsPerThread, 1, hardware));
+    }
+    if (threads > 1)
+        pool_ = std::make_unique<ThreadPool>(threads);
+
+    const std::size_t knots = system.knotCount(), bars = system.barCount();
+    x_ = system.position;
+    trial_ = x_;
+    force_.assign(knots, Vec3{});
+    step_.assign(knots, Vec3{});
+    tension_.assign(bars, 0.0);
+    kCompression_ = system.kCompression;
+    rhs_.assign(3 * analysis.freeKnots.size(), 0.0);
+    barTerm_.assign(bars, 0.0);
+    weightOf_.resize(knots);
+    bestX_.clear();
+    const double g = system.gravity.norm();
+    for (std::size_t j = 0; j < knots; ++j)
+        weightOf_[j] = system.mass[j] * g;
+    double restSum = 0;
+    for (double rest : system.restLength)
+        restSum += rest;
+    const double meanRest = bars > 0 && restSum > 0 ? restSum / static_cast<double>(bars) : 1.0;
+    dampingUnit_.resize(analysis.freeKnots.size());
+    for (std::size_t f = 0; f < analysis.freeKnots.size(); ++f)
+        dampingUnit_[f] = weightOf_[analysis.freeKnots[f]] / meanRest;
+}
+
+
+/// Eq. 3 at `at` for the current scale into force_; returns the max residual over free knots
+/// (+inf if any is not finite).
+double NewtonRun::evaluate(const std::vector<Vec3>& at) {
+    field_.evaluate(at, force_, pool_.get());
+    ++evaluations_;
+    double worst = 0;
+    for (std::uint32_t j : analysis_.freeKnots) {
+        const double r = field_.residualOf(j, force_[j]);
+        if (!std::isfinite(r))
+            return std::numeric_limits<double>::infinity();
+        worst = std::max(worst, r);
+    }
+    return worst;
+}
+
+void NewtonRun::setScale(double scale) {
+    scale_ = scale;
+    field_.setLoad(options_.wind, scale);
+}
+
+/// Compression stiffness max(k_c, blend k_s) (blend 0: the material's), force field included.
+void NewtonRun::setCompression(double blend) {
+    if (blend == compressionBlend_)
+        return;
+    compressionBlend_ = blend;
+    for (std::size_t b = 0; b < system_.barCount(); ++b)
+        kCompression_[b] = std::max(system_.kCompression[b], blend * system_.kTension[b]);
+    field_.setCompressionStiffness(kCompression_);
+}
+
+/// Whether some bar whose compression stiffness differs from its tension one is shorter than its
+/// rest length at x_.
+bool NewtonRun::anyCompressed() const {
+    for (std::size_t b = 0; b < system_.barCount(); ++b)
+        if (system_.kCompression[b] != system_.kTension[b] &&
+            distance(x_[system_.barA[b]], x_[system_.barB[b]]) < system_.restLength[b])
+            return true;
+    return false;
+}
+
+/// tension_ = s k (l - l_eq) at x_: the elastic tensions at the current scale.
+void NewtonRun::elasticTensions() {
+    forRange(system_.barCount(), [&](std::size_t begin, std::size_t end, std::size_t) {
+        for (std::size_t b = begin; b < end; ++b) {
+            const double l = distance(x_[system_.barA[b]], x_[system_.barB[b]]);
+            const double extension = l - system_.restLength[b];
+            tension_[b] = (extension > 0 ? system_.kTension[b] : kCompression_[b]) *
+                          scale_ * extension;
+        }
+    });
+}
+
+/// The Newton matrix at x_: per bar k u u^T + q (I - u u^T) (q = t / l >= 0, the positive part
+/// of the geometric stiffness; t = k (l - l_eq), or the tension estimate in the mixed stage),
+/// summed per knot in the fixed order of ForceField::barsOfKnot.
+void NewtonRun::assemble(bool mixed, bool exact) {
+    const std::size_t bars = system_.barCount();
+    forRange(bars, [&](std::size_t begin, std::size_t end, std::size_t) {
+        for (std::size_t b = begin; b < end; ++b) {
+            const Vec3 d = x_[system_.barB[b]] - x_[system_.barA[b]];
+            const double l = d.norm();
+            const double extension = l - system_.restLength[b];
+            const double k =
+                (extension > 0 ? system_.kTension[b] : kCompression_[b]) *
+                scale_;
+            double* h = &barBlock_[9 * b];
+            if (!(l > 0)) { // no direction: isotropic, keeps the matrix definite
+                for (int i = 0; i < 9; ++i)
+                    h[i] = i % 4 == 0 ? k : 0.0;
+                continue;
+            }
+            const double t =
+                mixed ? tension_[b]
+                      : (extension > 0 ? system_.kTension[b] : kCompression_[b]) * scale_ *
+                            extension;
+            const double q = (exact ? t : std::max(t, 0.0)) / l;
+            const double u[3] = {d.x / l, d.y / l, d.z / l};
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j)
+                    h[3 * i + j] = (k - q) * u[i] * u[j] + (i == j ? q : 0.0);
+        }
+    });
+    const std::size_t freeCount = analysis_.freeKnots.size();
+    forRange(freeCount, [&](std::size_t begin, std::size_t end, std::size_t) {
+        for (std::size_t f = begin; f < end; ++f) {
+            double sum[9] = {};
+            for (std::uint32_t b : field_.barsOfKnot(analysis_.freeKnots[f]))
+                for (int i = 0; i < 9; ++i)
+                    sum[i] += barBlock_[9 * b + i];
+            std::copy(sum, sum + 9, &values_[9 * f]);
+        }
+    });
+    // Off-diagonal blocks: -H_b (bars in increasing order, so a shared block sums in order).
+    const std::size_t pairBase = 9 * freeCount;
+    std::fill(values_.begin() + pairBase, values_.end(), 0.0);
+    for (std::size_t b = 0; b < bars; ++b) {
+        const std::int64_t p = analysis_.barPair[b];
+        if (p >= 0)
+            for (int i = 0; i < 9; ++i)
+                values_[pairBase + 9 * static_cast<std::size_t>(p) + static_cast<std::size_t>(i)] -=
+                    barBlock_[9 * b + static_cast<std::size_t>(i)];
+    }
+    double trace = 0;
+    for (std::size_t f = 0; f < freeCount; ++f)
+        trace += values_[9 * f] + values_[9 * f + 4] + values_[9 * f + 8];
+    if (!mixed && damping_ > 0)
+        for (std::size_t f = 0; f < freeCount; ++f)
+            for (int i : {0, 4, 8})
+                values_[9 * f + static_cast<std::size_t>(i)] += damping_ * dampingUnit_[f];
+    meanDiagonal_ = freeCount > 0 && trace > 0 ? trace / (3.0 * static_cast<double>(freeCount)) : 1.0;
+}
+
+bool NewtonRun::factorize() {
+    const auto t0 = Clock::now();
+    const bool ok = analysis_.cholesky.factorize(values_, shift_ * meanDiagonal_, pool_.get());
+    stats_.factorSeconds += secondsSince(t0);
+    ++stats_.factorizations;
+    if (!ok)
+        ++stats_.failedFactorizations;
+    return ok;
+}
+
+/// step_ = (H + mu I)^-1 F at the free knots (zero at fixed ones).
+void NewtonRun::solve() {
+    const auto t0 = Clock::now();
+    const std::size_t freeCount = analysis_.freeKnots.size();
+    for (std::size_t f = 0; f < freeCount; ++f) {
+        const Vec3& F = force_[analysis_.freeKnots[f]];
+        rhs_[3 * f] = F.x;
+        rhs_[3 * f + 1] = F.y;
+        rhs_[3 * f + 2] = F.z;
+    }
+    analysis_.cholesky.solve(rhs_, pool_.get());
+    for (std::size_t f = 0; f < freeCount; ++f)
+        step_[analysis_.freeKnots[f]] = Vec3{rhs_[3 * f], rhs_[3 * f + 1], rhs_[3 * f + 2]};
+    stats_.solveSeconds += secondsSince(t0);
+}
+
+/// E(x + alpha step) - E(x) at the current scale, bar by bar in a form exact to the relative
+/// accuracy of the change itself (so the line search still sees a decrease near convergence).
+double NewtonRun::energyChange(double alpha) {
+    forRange(system_.barCount(), [&](std::size_t begin, std::size_t end, std::size_t) {
+        for (std::size_t b = begin; b < end; ++b) {
+            const std::uint32_t a = system_.barA[b], e = system_.barB[b];
+            const Vec3 d = x_[e] - x_[a];
+            const Vec3 change = (step_[e] - step_[a]) * alpha;
+            const Vec3 moved = d + change;
+            const double l = d.norm(), lNew = moved.norm(), rest = system_.restLength[b];
+            const double k = (l > rest ? system_.kTension[b] : kCompression_[b]) * scale_;
+            const double kNew = (lNew > rest ? system_.kTension[b] : kCompression_[b]) * scale_;
+            if (k == kNew && l + lNew > 0) {
+                // l' - l = (d' + d) . (d' - d) / (l' + l), without cancellation.
+                const double dl = change.dot(d * 2.0 + change) / (l + lNew);
+                barTerm_[b] = 0.5 * k * dl * (lNew + l - 2 * rest);
+            } else {
+                barTerm_[b] = 0.5 * kNew * (lNew - rest) * (lNew - rest) -
+                              0.5 * k * (l - rest) * (l - rest);
+            }
+        }
+    });
+    double change = 0;
+    for (double term : barTerm_)
+        change += term;
+    for (std::uint32_t j : analysis_.freeKnots)
+        change -= (system_.gravity * system_.mass[j]).dot(step_[j]) * alpha;
+    return change;
+}
+
+/// Sum over free knots of (|F_j| / (m_j |g|))^2 at `at` (the wind's merit), force_ overwritten.
+double NewtonRun::meritOf(const std::vector<Vec3>& at) {
+    field_.evaluate(at, force_, pool_.get());
+    ++evaluations_;
+    double sum = 0;
+    for (std::uint32_t j : analysis_.freeKnots) {
+        const double r = force_[j].norm() / weightOf_[j];
+        sum += r * r;
+    }
+    return std::isfinite(sum) ? sum : std::numeric_limits<double>::infinity();
+}
+
+/// x += alpha step; in the mixed stage the tension estimates follow the linearised lengths.
+void NewtonRun::takeStep(double alpha, bool mixed) {
+    if (mixed)
+        forRange(system_.barCount(), [&](std::size_t begin, std::size_t end, std::size_t) {
+            for (std::size_t b = begin; b < end; ++b) {
+                const std::uint32_t a = system_.barA[b], e = system_.barB[b];
+                const Vec3 d = x_[e] - x_[a];
+                const double l = d.norm();
+                if (!(l > 0))
+                    continue;
+                const double linear = l + d.dot(step_[e] - step_[a]) * (alpha / l);
+                const double extension = linear - system_.restLength[b];
+                tension_[b] = (extension > 0 ? system_.kTension[b] : kCompression_[b]) *
+                              scale_ * extension;
+            }
+        });
+    for (std::uint32_t j : analysis_.freeKnots)
+        x_[j] += step_[j] * alpha;
+}
+
+/// Keeps x_ as the last stage's best state when its residual is the lowest so far.
+void NewtonRun::keepIfBest() {
+    if (!(residual_ < bestResidual_))
+        return;
+    bestResidual_ = residual_;
+    bestX_ = x_;
+}
+
+/// A start with a tension hint: mixed Newton iterations at the run's scale whose tension
+/// estimates start from the hint, and in which a bar that the hint has taut keeps its tension
+/// stiffness when it is shorter than its rest length (after an edit that lengthens bars, a bar
+/// that carried load is slack until the net has dropped; with k_c the linear model would stretch
+/// it back a hundred times too far). The first iteration is then the tangent predictor of the edit
+/// (the linear response of the hinted state to the new rest lengths, stiffnesses and loads) and
+/// the next ones converge quadratically, as long as the bars the hint has taut are taut at the
+/// equilibrium. At most kHintIterations, down to `tolerance`; the state reached is kept only when
+/// its residual under the material's law is below the start's, and the run goes on from there
+/// (the usual decision: a start near the equilibrium is warm).
+void NewtonRun::hintedStart(double tolerance) {
+    const std::span<const double> hint = options_.startTensions;
+    const std::vector<Vec3> start = x_;
+    const double startResidual = residual_;
+    for (std::size_t b = 0; b < system_.barCount(); ++b) {
+        tension_[b] = hint[b];
+        kCompression_[b] = hint[b] > 0 ? std::max(system_.kCompression[b], system_.kTension[b])
+                                       : system_.kCompression[b];
+    }
+    field_.setCompressionStiffness(kCompression_);
+    residual_ = evaluate(x_);
+    double best = residual_;
+    shift_ = kFinalMinShift;
+    const std::int64_t first = steps_;
+    while (steps_ - first < kHintIterations && !(residual_ < tolerance) && !stopRequested()) {
+        report(false);
+        assemble(true, false);
+        bool factored = factorize();
+        while (!factored && shift_ < kMaxShift) {
+            shift_ = std::max(shift_ * 10, kFailShift);
+            factored = factorize();
+        }
+        ++steps_;
+        if (!factored)
+            break;
+        solve();
+        double alpha = 1;
+        bool accepted = false;
+        for (int k = 0; k < kMaxBacktracks && !accepted; ++k, alpha *= 0.5) {
+            for (std::uint32_t j : analysis_.freeKnots)
+                trial_[j] = x_[j] + step_[j] * alpha;
+            accepted = evaluate(trial_) < kMixedGrowth * best;
+            if (accepted)
+                break;
+        }
+        if (!accepted) {
+            shift_ = std::max(shift_ * 10, kFailShift);
+            residual_ = evaluate(x_);
+            continue;
+        }
+        takeStep(alpha, true);
+        residual_ = evaluate(x_);
+        if (alpha == 1.0)
+            shift_ = std::max(shift_ * 0.1, kFinalMinShift);
+        best = std::min(best, residual_);
+    }
+    stats_.hintIterations = steps_ - first;
+    // Back to the material's law.
+    compressionBlend_ = -1;
+    setCompression(0.0);
+    residual_ = evaluate(x_);
+    if (!(residual_ < startResidual)) {
+        x_ = start;
+        residual_ = evaluate(x_);
+    }
+}
+
+bool NewtonRun::stopRequested() {
+    if (options_.cancel && options_.cancel->load(std::memory_order_relaxed))
+        stopReason_ = "cancelled";
+    else if (secondsSince(start_) >= options_.maxSeconds)
+        stopReason_ = "time limit";
+    else if (options_.maxSteps >= 0 && steps_ >= options_.maxSteps)
+        stopReason_ = "step limit";
+    return !stopReason_.empty();
+}
+
+void NewtonRun::report(bool force) {
+    if (!options_.progress)
+        return;
+    const double now = secondsSince(start_);
+    if (!force && now - lastProgress_ < options_.progressInterval)
+        return;
+    lastProgress_ = now;
+    RelaxProgress progress;
+    progress.residual = residual_;
+    progress.steps = steps_;
+    progress.seconds = now;
+    progress.stiffnessScale = scale_;
+    progress.positions = x_;
+    options_.progress(progress);
+}
+
+} // namespace netsculpt::newton

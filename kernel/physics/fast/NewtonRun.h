@@ -1,0 +1,195 @@
+#pragma once
+// One relaxation of the "fast" backend (NewtonRelaxer.h): the Newton iteration on the net's
+// potential energy and its bookkeeping. NewtonRun.cpp has the parts of an iteration (forces,
+// the Newton matrix, its factorization and solve, energy changes, steps, reports);
+// NewtonRelaxer.cpp the strategy (the start's judgement, the stages, the line search) and
+// FastRelaxer. Internal to kernel/physics/fast.
+
+#include "physics/Forces.h"
+#include "physics/Relaxer.h"
+#include "physics/ThreadPool.h"
+#include "physics/fast/HugePageArray.h"
+#include "physics/fast/NewtonAnalysis.h"
+#include "physics/fast/NewtonRelaxer.h"
+
+#include <array>
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace netsculpt::newton {
+
+// Soft stage: EA scaled down to kSoftLoadFactor times the mean load per held knot (strains of a
+// few per cent at the top of a net; the same floor as RK4's first continuation stage). No soft
+// stage when that would not soften the material by at least kMaxSoftScale.
+constexpr double kSoftLoadFactor = 20;
+constexpr double kMaxSoftScale = 0.1;
+// Then, for a slack net only, stages kStageFactor times stiffer each (the last intermediate one
+// at least sqrt(kStageFactor) below the material's): a tension-dominated net needs none (the jump
+// from the soft stage to the material costs four or five mixed iterations), a slack one needs
+// them because the shape of its slack parts changes with the stiffness. Each soft stage only has to bring the shape
+// near the next one: it stops at kSoftTolerance.
+constexpr double kStageFactor = 100;
+constexpr double kSoftTolerance = 1e-1;
+// A slack net (bars in compression at the first soft stage's equilibrium) is then taken to the
+// material's stiffness first with compression stiffness max(k_c, blend k_s) for each blend of
+// kFinalBlends (1: the energy has no kink at the rest length, so bars hovering at zero tension
+// in the slack parts do not make Newton chatter), down to kBlendTolerance, and only then with
+// the material's k_c (the compressed bars then shorten by ~1e-6 of a bar: one or two mixed
+// iterations).
+constexpr std::array<double, 1> kFinalBlends = {1};
+constexpr double kBlendTolerance = 1e-3;
+// Slack nets, energy stages after the first: a second Levenberg shift lambda_D D, D = diag(m_j |g|
+// / mean rest length) (the geometric stiffness of a bar carrying one knot's weight, the scale of
+// the soft modes of slack parts that the line search would otherwise cut the whole step for),
+// driven like a trust region: starts at kDampingStart, is multiplied by kDampingDown after a full
+// step whose energy decrease is more than kRatioGood of the model's (dropped below kDampingMin),
+// and by kDampingUp (at least kDampingMin) when the step was cut below kDampingCut or the ratio
+// is below kRatioPoor. It carries over from stage to stage.
+constexpr double kDampingStart = 1;
+constexpr double kDampingMin = 1e-3;
+constexpr double kDampingUp = 4;
+constexpr double kDampingDown = 0.1;
+constexpr double kDampingCut = 0.5;
+constexpr double kRatioGood = 0.75;
+constexpr double kRatioPoor = 0.25;
+// A start is warm (no soft stage) when at least this share of the bars is stretched by more
+// than kTautStrain (the bars already carry the load; their tensions seed the mixed Newton) ...
+constexpr double kWarmTautShare = 0.5;
+constexpr double kTautStrain = 1e-9;
+// ... and none is stretched by more than this (new knots placed far from their carried
+// neighbours after an edit need the soft stage again).
+constexpr double kWarmMaxStrain = 0.05;
+// ... and the start's residual is below this: the forces are out of balance by at most a
+// hundred times the knots' weights (rows added below a relaxed net are not; their weight, not
+// yet carried, is a cold start in disguise).
+constexpr double kWarmMaxResidual = 100;
+// A start with a tension hint (RelaxOptions::startTensions) first gets at most this many mixed
+// Newton iterations seeded with the hint (see NewtonRun::hintedStart); a small edit needs two or
+// three, and a start the hint does not fit goes on to the usual decision after them.
+constexpr int kHintIterations = 6;
+// Line search: Armijo's sufficient decrease, at most kMaxBacktracks halvings (safeguarded
+// quadratic interpolation).
+constexpr double kArmijo = 1e-4;
+constexpr int kMaxBacktracks = 30;
+// Levenberg shift mu = lambda * (mean diagonal of the Newton matrix). lambda never goes below
+// kMinShift (it keeps exactly singular directions, such as the out-of-plane motion of a planar
+// slack net, factorizable), jumps to at least kFailShift when a factorization or a line search
+// fails and grows tenfold per further failure; beyond kMaxShift the run has diverged. The last
+// stage, when mixed (near an equilibrium), lets it fall to kFinalMinShift: kMinShift times the
+// mean diagonal (the bars' axial stiffness) is a thousandth of the geometric stiffness of a bar
+// carrying one knot, which would make the last iterations converge linearly at that rate
+// instead of quadratically.
+constexpr double kMinShift = 1e-10;
+constexpr double kFinalMinShift = 1e-14;
+constexpr double kFailShift = 1e-6;
+constexpr double kMaxShift = 1e6;
+// Mixed stage: a step is taken while the residual grows by less than kMixedGrowth; when the best
+// residual has not improved for kMixedPatience iterations the stage falls back to the energy line
+// search.
+constexpr double kMixedGrowth = 10;
+constexpr int kMixedPatience = 4;
+// An accepted step shorter than this (a fraction of the Newton step) raises the shift (not on a
+// stage's first iteration, whose direction is poor by nature from a cold start).
+constexpr double kSmallStep = 0.2;
+// After the exact Hessian was found indefinite, the projected one is used for this many
+// iterations before the exact one is tried again.
+constexpr int kExactPause = 3;
+// Automatic thread count: at most one thread per this many bars.
+constexpr std::size_t kAutoBarsPerThread = 4096;
+
+using Clock = std::chrono::steady_clock;
+
+inline double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// One stage of a run: a stiffness scale, the residual it stops at, whether it starts mixed.
+struct Stage {
+    double scale;
+    double tolerance;
+    bool mixed;
+    double blend; ///< compression stiffness max(k_c, blend k_s)
+};
+
+/// One relaxation: the Newton iteration and its bookkeeping.
+class NewtonRun {
+  public:
+    NewtonRun(MassSpringSystem& system, const RelaxOptions& options, NewtonAnalysis& analysis,
+              NewtonStatistics& statistics, Clock::time_point start);
+    RelaxResult run();
+
+  private:
+    template <typename Body> void forRange(std::size_t count, Body&& body) {
+        if (pool_)
+            pool_->parallelFor(count, body);
+        else if (count > 0)
+            body(std::size_t{0}, count, std::size_t{0});
+    }
+
+    double evaluate(const std::vector<Vec3>& at);
+    void setScale(double scale);
+    void setCompression(double blend);
+    bool anyCompressed() const;
+    void elasticTensions();
+    void assemble(bool mixed, bool exact);
+    bool factorize();
+    void solve();
+    double energyChange(double alpha);
+    double meritOf(const std::vector<Vec3>& at);
+    void takeStep(double alpha, bool mixed);
+    void hintedStart(double tolerance);
+    bool isWarm() const;
+    double softStageScale() const;
+    std::vector<Stage> planStages(double softScale, bool warm) const;
+    void runStage(const Stage& stage, bool lastStage, bool slack);
+    bool assembleAndFactorize(bool mixed, int& exactPause);
+    double searchLine(bool mixed, double slope, double best, bool& accepted, double& fullChange);
+    void adaptDamping(double alpha, double slope, double fullChange);
+    RelaxResult finish(double tolerance);
+    bool stopRequested();
+    void keepIfBest();
+    void report(bool force);
+
+    MassSpringSystem& system_;
+    const RelaxOptions& options_;
+    NewtonAnalysis& analysis_;
+    NewtonStatistics& stats_;
+    Clock::time_point start_;
+    // The run's storage lives in the analysis (kept between calls on one topology).
+    ForceField& field_;
+    std::unique_ptr<ThreadPool> pool_;
+
+    std::vector<Vec3>& x_;
+    std::vector<Vec3>& trial_;
+    std::vector<Vec3>& force_;
+    std::vector<Vec3>& step_;
+    std::vector<double>& tension_;      ///< mixed stage: the bars' tension estimates, N
+    std::vector<double>& kCompression_; ///< the stage's compression stiffness per bar, N/m at scale 1
+    HugePageArray& barBlock_;           ///< 9 per bar: its Hessian block
+    HugePageArray& values_;             ///< the Newton matrix's blocks (SupernodalCholesky layout)
+    std::vector<double>& rhs_;          ///< 3 per free knot
+    std::vector<double>& barTerm_;      ///< per bar scratch for sums done in a fixed order
+    std::vector<double>& weightOf_;     ///< m_j |g| per knot
+    double scale_ = 1;
+    double compressionBlend_ = 0;
+    double residual_ = 0;            ///< at x_, current scale
+    double shift_ = kMinShift;       ///< lambda of the Levenberg shift
+    double damping_ = 0;             ///< lambda of the weight-scaled shift (energy stages)
+    std::vector<double>& dampingUnit_; ///< per free knot: m_j |g| / (mean rest length), N/m
+    double meanDiagonal_ = 1;
+    bool windy_ = false;
+    std::int64_t steps_ = 0, evaluations_ = 0;
+    double lastProgress_ = -std::numeric_limits<double>::infinity();
+    std::string stopReason_;
+    // The last stage (the material's stiffness): its best state so far, returned when the run
+    // stops before converging (its residual can rise and fall from one iteration to the next).
+    std::vector<Vec3>& bestX_;
+    double bestResidual_ = std::numeric_limits<double>::infinity();
+};
+
+} // namespace netsculpt::newton

@@ -1,0 +1,182 @@
+// SupernodalCholesky's triangular solves with the factor: forward L y' = y, backward
+// L^T x = y', one supernode at a time, in order or over the factorization's task tree with a
+// pool (the same operations per entry in the same order, so the same bits).
+#include "physics/fast/SupernodalCholesky.h"
+
+#include "physics/ThreadPool.h"
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cassert>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace netsculpt {
+
+namespace {
+
+using ConstMatrixMap = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic>>;
+
+} // namespace
+
+void SupernodalCholesky::solve(std::span<double> b, ThreadPool* pool) const {
+    assert(analysed_ && !failed_ && b.size() == dimension_);
+    if (pool && pool->size() > 1 && taskStart_.size() > 2)
+        return solveParallel(b, *pool);
+    const std::size_t supers = superStart_.size() - 1;
+    Eigen::VectorXd y(static_cast<Eigen::Index>(dimension_));
+    for (std::size_t k = 0; k < dimension_; ++k)
+        y[static_cast<Eigen::Index>(k)] = b[static_cast<std::size_t>(perm_[k])];
+    Eigen::VectorXd scratch(static_cast<Eigen::Index>(maxRows_));
+    // L y' = y
+    for (std::size_t s = 0; s < supers; ++s) {
+        const std::int64_t cols = superStart_[s + 1] - superStart_[s];
+        const std::int64_t rowCount = rowStart_[s + 1] - rowStart_[s];
+        ConstMatrixMap l(values_.data() + valueStart_[s], rowCount, cols);
+        auto part = y.segment(superStart_[s], cols);
+        l.topRows(cols).triangularView<Eigen::Lower>().solveInPlace(part);
+        const std::int64_t below = rowCount - cols;
+        if (below == 0)
+            continue;
+        auto t = scratch.head(below);
+        t.noalias() = l.bottomRows(below) * part;
+        const std::int64_t* rows = rows_.data() + rowStart_[s] + cols;
+        for (std::int64_t i = 0; i < below; ++i)
+            y[rows[i]] -= t[i];
+    }
+    // L^T x = y'
+    for (std::size_t s = supers; s-- > 0;)
+        solveBackward(s, y.data(), scratch.data());
+    for (std::size_t k = 0; k < dimension_; ++k)
+        b[static_cast<std::size_t>(perm_[k])] = y[static_cast<Eigen::Index>(k)];
+}
+
+// Supernode s's part of L^T x = y': its entries of y minus its rows below times their (final)
+// entries, then its diagonal block's transposed triangle solved.
+void SupernodalCholesky::solveBackward(std::size_t s, double* yData, double* scratch) const {
+    const std::int64_t cols = superStart_[s + 1] - superStart_[s];
+    const std::int64_t rowCount = rowStart_[s + 1] - rowStart_[s];
+    ConstMatrixMap l(values_.data() + valueStart_[s], rowCount, cols);
+    Eigen::Map<Eigen::VectorXd> y(yData, static_cast<Eigen::Index>(dimension_));
+    auto part = y.segment(superStart_[s], cols);
+    const std::int64_t below = rowCount - cols;
+    if (below > 0) {
+        Eigen::Map<Eigen::VectorXd> t(scratch, below);
+        const std::int64_t* rows = rows_.data() + rowStart_[s] + cols;
+        for (std::int64_t i = 0; i < below; ++i)
+            t[i] = y[rows[i]];
+        part.noalias() -= l.bottomRows(below).transpose() * t;
+    }
+    l.topRows(cols).transpose().triangularView<Eigen::Upper>().solveInPlace(part);
+}
+
+// The same operations as solve() without a pool, per entry in the same order: the forward
+// substitution pulls, into a supernode's entries, the products of the descendants whose rows are
+// among its columns in increasing descendant order (the order in which the sequential solve
+// pushes them there); the backward one reads only its ancestors' finished entries. Tasks run
+// as in the factorization, forward children first, backward parents first.
+void SupernodalCholesky::solveParallel(std::span<double> b, ThreadPool& pool) const {
+    const std::size_t supers = superStart_.size() - 1;
+    const std::size_t tasks = taskStart_.size() - 1;
+    const auto threads = static_cast<std::size_t>(pool.size());
+    Eigen::VectorXd y(static_cast<Eigen::Index>(dimension_));
+    for (std::size_t k = 0; k < dimension_; ++k)
+        y[static_cast<Eigen::Index>(k)] = b[static_cast<std::size_t>(perm_[k])];
+    if (belowProducts_.size() != static_cast<std::size_t>(belowStart_[supers]))
+        belowProducts_.resize(static_cast<std::size_t>(belowStart_[supers]));
+    std::vector<Eigen::VectorXd> scratch(threads,
+                                         Eigen::VectorXd(static_cast<Eigen::Index>(maxRows_)));
+
+    auto forward = [&](std::size_t s, Eigen::VectorXd& t) {
+        const std::int64_t cols = superStart_[s + 1] - superStart_[s];
+        const std::int64_t rowCount = rowStart_[s + 1] - rowStart_[s];
+        for (std::int64_t u = updateStart_[s]; u < updateStart_[s + 1]; ++u) {
+            const Update& update = updates_[static_cast<std::size_t>(u)];
+            const std::size_t d = update.source;
+            const std::int64_t* sourceRows = rows_.data() + rowStart_[d];
+            const double* product =
+                belowProducts_.data() + belowStart_[d] - (superStart_[d + 1] - superStart_[d]);
+            for (std::uint32_t i = update.begin; i < update.end; ++i)
+                y[sourceRows[i]] -= product[i];
+        }
+        ConstMatrixMap l(values_.data() + valueStart_[s], rowCount, cols);
+        auto part = y.segment(superStart_[s], cols);
+        l.topRows(cols).triangularView<Eigen::Lower>().solveInPlace(part);
+        const std::int64_t below = rowCount - cols;
+        if (below == 0)
+            return;
+        auto head = t.head(below);
+        head.noalias() = l.bottomRows(below) * part;
+        std::copy(head.data(), head.data() + below, belowProducts_.data() + belowStart_[s]);
+    };
+    auto backward = [&](std::size_t s, Eigen::VectorXd& t) { solveBackward(s, y.data(), t.data()); };
+
+    // Backward, a task is ready when its parent task is done.
+    std::vector<std::uint32_t> childStart(tasks + 1, 0), children(tasks);
+    for (std::size_t t = 0; t < tasks; ++t)
+        if (taskParent_[t] != kNone)
+            ++childStart[taskParent_[t] + 1];
+    for (std::size_t t = 0; t < tasks; ++t)
+        childStart[t + 1] += childStart[t];
+    {
+        std::vector<std::uint32_t> next(childStart.begin(), childStart.end() - 1);
+        for (std::size_t t = 0; t < tasks; ++t)
+            if (taskParent_[t] != kNone)
+                children[next[taskParent_[t]]++] = static_cast<std::uint32_t>(t);
+    }
+
+    for (const bool isForward : {true, false}) {
+        std::vector<std::uint32_t> waits =
+            isForward ? taskWaits_ : std::vector<std::uint32_t>(tasks, 0);
+        std::vector<std::uint32_t> ready;
+        for (std::size_t t = 0; t < tasks; ++t)
+            if (isForward ? waits[t] == 0 : taskParent_[t] == kNone)
+                ready.push_back(static_cast<std::uint32_t>(t));
+        std::mutex mutex;
+        std::size_t remaining = tasks;
+        auto loop = [&](Eigen::VectorXd& t) {
+            for (;;) {
+                std::uint32_t task = kNone;
+                {
+                    std::lock_guard<std::mutex> lock(mutex);
+                    if (remaining == 0)
+                        return;
+                    if (!ready.empty()) {
+                        task = ready.back();
+                        ready.pop_back();
+                    }
+                }
+                if (task == kNone) {
+                    std::this_thread::yield();
+                    continue;
+                }
+                if (isForward)
+                    for (std::uint32_t k = taskStart_[task]; k < taskStart_[task + 1]; ++k)
+                        forward(taskSupers_[k], t);
+                else
+                    for (std::uint32_t k = taskStart_[task + 1]; k-- > taskStart_[task];)
+                        backward(taskSupers_[k], t);
+                std::lock_guard<std::mutex> lock(mutex);
+                --remaining;
+                if (isForward) {
+                    const std::uint32_t up = taskParent_[task];
+                    if (up != kNone && --waits[up] == 0)
+                        ready.push_back(up);
+                } else {
+                    for (std::uint32_t c = childStart[task]; c < childStart[task + 1]; ++c)
+                        ready.push_back(children[c]);
+                }
+            }
+        };
+        pool.parallelFor(threads, [&](std::size_t begin, std::size_t end, std::size_t) {
+            for (std::size_t w = begin; w < end; ++w)
+                loop(scratch[w]);
+        });
+    }
+    for (std::size_t k = 0; k < dimension_; ++k)
+        b[static_cast<std::size_t>(perm_[k])] = y[static_cast<Eigen::Index>(k)];
+}
+
+} // namespace netsculpt
