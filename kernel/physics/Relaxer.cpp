@@ -35,9 +35,6 @@ constexpr std::int64_t kRecoverSteps = 256;
 constexpr double kMinStepFraction = 1e-6;
 // The first continuation stage keeps EA >= kPreviewLoadFactor times the mean load per held knot.
 constexpr double kPreviewLoadFactor = 20;
-// Automatic thread count: one thread per this many bars at most (below, the barriers cost more
-// than the work they share).
-constexpr std::size_t kAutoBarsPerThread = 4096;
 
 using Clock = std::chrono::steady_clock;
 
@@ -63,14 +60,7 @@ class Rk4Run {
                 throw UserError("mass-spring system: knot " + std::to_string(j) +
                                 " has a non-finite position");
 
-        int threads = options.threads;
-        if (threads == 0) {
-            const std::size_t hardware = std::max(1u, std::thread::hardware_concurrency());
-            threads = static_cast<int>(
-                std::clamp<std::size_t>(field_.barCount() / kAutoBarsPerThread, 1, hardware));
-        }
-        if (threads > 1)
-            pool_ = std::make_unique<ThreadPool>(threads);
+        pool_ = relaxationPool(options.threads, field_.barCount());
         partials_.resize(pool_ ? pool_->chunkCount(knots) : 1); // one per chunk of the knot pass
 
         x_ = system.position;

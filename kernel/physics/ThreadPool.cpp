@@ -107,4 +107,13 @@ void ThreadPool::workerLoop() {
     }
 }
 
+std::unique_ptr<ThreadPool> relaxationPool(int threads, std::size_t bars) {
+    constexpr std::size_t kAutoBarsPerThread = 4096;
+    if (threads == 0) {
+        const std::size_t hardware = std::max(1u, std::thread::hardware_concurrency());
+        threads = static_cast<int>(std::clamp<std::size_t>(bars / kAutoBarsPerThread, 1, hardware));
+    }
+    return threads > 1 ? std::make_unique<ThreadPool>(threads) : nullptr;
+}
+
 } // namespace netsculpt

@@ -13,6 +13,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <thread>
 #include <vector>
 
@@ -69,5 +70,10 @@ class ThreadPool {
     std::atomic<std::uint32_t> done_{0};       ///< chunks of the current task finished
     std::atomic<bool> stop_{false};
 };
+
+/// The pool of a relaxation over `bars` bars: `threads` (> 0) as asked, or for 0 one thread per
+/// 4096 bars up to the hardware's threads (below that the barriers cost more than the work they
+/// share); null when that comes to one thread.
+std::unique_ptr<ThreadPool> relaxationPool(int threads, std::size_t bars);
 
 } // namespace netsculpt

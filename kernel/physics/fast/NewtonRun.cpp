@@ -17,14 +17,7 @@ NewtonRun::NewtonRun(MassSpringSystem& system, const RelaxOptions& options,
       dampingUnit_(analysis.dampingUnit), bestX_(analysis.bestX) {
     field_.setLoad(options.wind, 1.0);
     windy_ = options.wind && options.wind->pressure > 0;
-    int threads = options.threads;
-    if (threads == 0) {
-        const std::size_t hardware = std::max(1u, std::thread::hardware_concurrency());
-        threads = static_cast<int>(
-            std::clamp<std::size_t>(field_.barCount() / kAutoBarsPerThread, 1, hardware));
-    }
-    if (threads > 1)
-        pool_ = std::make_unique<ThreadPool>(threads);
+    pool_ = relaxationPool(options.threads, field_.barCount());
 
     const std::size_t knots = system.knotCount(), bars = system.barCount();
     x_ = system.position;

@@ -99,8 +99,6 @@ constexpr double kSmallStep = 0.2;
 // After the exact Hessian was found indefinite, the projected one is used for this many
 // iterations before the exact one is tried again.
 constexpr int kExactPause = 3;
-// Automatic thread count: at most one thread per this many bars.
-constexpr std::size_t kAutoBarsPerThread = 4096;
 
 using Clock = std::chrono::steady_clock;
 
