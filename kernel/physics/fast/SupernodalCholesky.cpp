@@ -276,18 +276,16 @@ void SupernodalCholesky::analyse(std::size_t nodes,
         for (std::int64_t k = superStart_[s]; k < superStart_[s + 1]; ++k)
             columnSuper_[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(s);
     }
-    auto rowCount = [this](std::size_t s) { return rowStart_[s + 1] - rowStart_[s]; };
-    auto colCount = [this](std::size_t s) { return superStart_[s + 1] - superStart_[s]; };
     flops_ = 0; // as CHOLMOD counts: the square of each column's entry count
     for (std::size_t s = 0; s < supers; ++s)
-        for (std::int64_t k = 0; k < colCount(s); ++k)
-            flops_ += static_cast<double>(rowCount(s) - k) * static_cast<double>(rowCount(s) - k);
+        for (std::int64_t k = 0; k < superColumns(s); ++k)
+            flops_ += static_cast<double>(superRows(s) - k) * static_cast<double>(superRows(s) - k);
 
     // Updates: the rows of supernode d below its own columns, in runs by target supernode.
     std::vector<std::int64_t> updateCount(supers + 1, 0);
     std::vector<std::uint32_t> parent(supers, kNone);
     auto forEachRun = [&](std::size_t d, auto&& visit) {
-        const std::int64_t first = rowStart_[d], cols = colCount(d), count = rowCount(d);
+        const std::int64_t first = rowStart_[d], cols = superColumns(d), count = superRows(d);
         for (std::int64_t i = cols; i < count;) {
             const std::uint32_t target = columnSuper_[static_cast<std::size_t>(rows_[first + i])];
             std::int64_t e = i + 1;
@@ -299,8 +297,8 @@ void SupernodalCholesky::analyse(std::size_t nodes,
     };
     for (std::size_t d = 0; d < supers; ++d) {
         forEachRun(d, [&](std::uint32_t target, std::int64_t, std::int64_t) { ++updateCount[target + 1]; });
-        if (rowCount(d) > colCount(d))
-            parent[d] = columnSuper_[static_cast<std::size_t>(rows_[rowStart_[d] + colCount(d)])];
+        if (superRows(d) > superColumns(d))
+            parent[d] = columnSuper_[static_cast<std::size_t>(rows_[rowStart_[d] + superColumns(d)])];
     }
     updateStart_.assign(supers + 1, 0);
     for (std::size_t s = 0; s < supers; ++s)
@@ -316,10 +314,26 @@ void SupernodalCholesky::analyse(std::size_t nodes,
             });
     }
 
-    // Where each input block goes, placed block by block (a node's three unknowns are
-    // consecutive pivots, columns of one supernode and consecutive rows of every supernode that
-    // holds them): the offset in its target supernode's dense block of the block's first entry,
-    // and whether it lands transposed (its node of rows is pivoted before its node of columns).
+    placeInput(pairs);
+    planSchedule(parent);
+
+    belowStart_.assign(supers + 1, 0);
+    for (std::size_t s = 0; s < supers; ++s)
+        belowStart_[s + 1] = belowStart_[s] + superRows(s) - superColumns(s);
+
+    // Every block is zeroed and filled by its factorization before anything reads it.
+    values_.allocate(static_cast<std::size_t>(valueStart_[supers]));
+    workers_.clear();
+    analysed_ = true;
+}
+
+// Where each input block goes, placed block by block (a node's three unknowns are consecutive
+// pivots, columns of one supernode and consecutive rows of every supernode that holds them):
+// the offset in its target supernode's dense block of the block's first entry, and whether it
+// lands transposed (its node of rows is pivoted before its node of columns).
+void SupernodalCholesky::placeInput(std::span<const std::array<std::uint32_t, 2>> pairs) {
+    const std::size_t nodes = nodes_;
+    const std::size_t supers = superStart_.size() - 1;
     std::vector<std::int64_t> nodePivot(nodes);
     for (std::size_t k = 0; k < nodes; ++k)
         nodePivot[static_cast<std::size_t>(perm_[3 * k] / 3)] = static_cast<std::int64_t>(k);
@@ -333,8 +347,8 @@ void SupernodalCholesky::analyse(std::size_t nodes,
         const auto* end = rows_.data() + rowStart_[s + 1];
         const auto* at = std::lower_bound(begin, end, row);
         assert(at + 2 < end && *at == row);
-        const std::int64_t offset = (col - superStart_[s]) * rowCount(s) + (at - begin);
-        if (offset + 2 * rowCount(s) + 2 > std::numeric_limits<std::uint32_t>::max())
+        const std::int64_t offset = (col - superStart_[s]) * superRows(s) + (at - begin);
+        if (offset + 2 * superRows(s) + 2 > std::numeric_limits<std::uint32_t>::max())
             throw std::runtime_error("sparse Cholesky analysis: a supernode is too large");
         return std::pair{s, static_cast<std::uint32_t>(offset)};
     };
@@ -366,17 +380,23 @@ void SupernodalCholesky::analyse(std::size_t nodes,
     }
     diagonalOffset_.resize(dimension_);
     for (std::size_t s = 0; s < supers; ++s)
-        for (std::int64_t k = 0; k < colCount(s); ++k)
+        for (std::int64_t k = 0; k < superColumns(s); ++k)
             diagonalOffset_[static_cast<std::size_t>(superStart_[s] + k)] =
-                static_cast<std::uint32_t>(k * rowCount(s) + k);
+                static_cast<std::uint32_t>(k * superRows(s) + k);
 
-    // Schedule. Subtree work, children before parents (a parent's index is always larger).
+}
+
+// The factorization's schedule: tasks of whole small subtrees or single supernodes, children
+// before parents, each waiting for the tasks below it; and the supernodes shared by a pool's
+// threads (tasks of one supernode, wide enough), their columns in ranges of whole nodes.
+void SupernodalCholesky::planSchedule(const std::vector<std::uint32_t>& parent) {
+    const std::size_t supers = superStart_.size() - 1;
     std::vector<double> work(supers, 0.0), subtree(supers, 0.0);
     std::vector<std::uint32_t> firstInSubtree(supers);
     double total = 0;
     for (std::size_t s = 0; s < supers; ++s) {
-        const double cols = static_cast<double>(colCount(s));
-        const double below = static_cast<double>(rowCount(s) - colCount(s));
+        const double cols = static_cast<double>(superColumns(s));
+        const double below = static_cast<double>(superRows(s) - superColumns(s));
         work[s] = cols * cols * cols / 3 + below * cols * cols + below * below * cols + 1e3;
         total += work[s];
         firstInSubtree[s] = static_cast<std::uint32_t>(s);
@@ -429,7 +449,7 @@ void SupernodalCholesky::analyse(std::size_t nodes,
         if (taskStart_[t + 1] - taskStart_[t] != 1)
             continue;
         const std::uint32_t s = taskSupers_[taskStart_[t]];
-        const std::int64_t cols = colCount(s);
+        const std::int64_t cols = superColumns(s);
         if (cols < kSharedColumns)
             continue;
         const std::int64_t ranges =
@@ -443,14 +463,6 @@ void SupernodalCholesky::analyse(std::size_t nodes,
     for (std::size_t s = 0; s < supers; ++s)
         splitStart_[s + 1] += splitStart_[s];
 
-    belowStart_.assign(supers + 1, 0);
-    for (std::size_t s = 0; s < supers; ++s)
-        belowStart_[s + 1] = belowStart_[s] + rowCount(s) - colCount(s);
-
-    // Every block is zeroed and filled by its factorization before anything reads it.
-    values_.allocate(static_cast<std::size_t>(valueStart_[supers]));
-    workers_.clear();
-    analysed_ = true;
 }
 
 void SupernodalCholesky::applyUpdates(std::size_t s, std::int64_t columnBegin,

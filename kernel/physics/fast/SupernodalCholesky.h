@@ -77,6 +77,10 @@ class SupernodalCholesky {
 
   private:
     static constexpr std::uint32_t kNone = UINT32_MAX; ///< no task / no parent
+    std::int64_t superRows(std::size_t s) const { return rowStart_[s + 1] - rowStart_[s]; }
+    std::int64_t superColumns(std::size_t s) const { return superStart_[s + 1] - superStart_[s]; }
+    void placeInput(std::span<const std::array<std::uint32_t, 2>> pairs);
+    void planSchedule(const std::vector<std::uint32_t>& parent);
     struct Update {
         std::uint32_t source; ///< a descendant supernode
         std::uint32_t begin;  ///< its first row (index into its row list) inside the target's columns
