@@ -12,7 +12,7 @@
 
 #include <catch2/catch.hpp>
 
-#include <Eigen/Dense>
+#include "physics/EigenDense.h"
 
 #include <algorithm>
 #include <array>

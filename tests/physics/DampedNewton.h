@@ -3,7 +3,7 @@
 // net to a few unknowns): finite-difference Jacobian, full-pivot LU, step halving until the
 // residual norm decreases.
 
-#include <Eigen/Dense>
+#include "physics/EigenDense.h"
 
 #include <algorithm>
 #include <cmath>

@@ -13,7 +13,7 @@
 
 #include <catch2/catch.hpp>
 
-#include <Eigen/Dense>
+#include "physics/EigenDense.h"
 
 #include <algorithm>
 

@@ -9,7 +9,7 @@
 #include "physics/Relaxer.h"
 #include "physics/fast/NewtonRelaxer.h"
 
-#include <Eigen/Dense>
+#include "physics/EigenDense.h"
 #include <catch2/catch.hpp>
 
 #include <algorithm>

@@ -2,7 +2,7 @@
 #include "physics/ThreadPool.h"
 #include "physics/fast/SupernodalCholesky.h"
 
-#include <Eigen/Dense>
+#include "physics/EigenDense.h"
 #include <catch2/catch.hpp>
 
 #include <array>

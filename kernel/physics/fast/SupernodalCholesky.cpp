@@ -3,8 +3,7 @@
 #include "physics/ThreadPool.h"
 #include "physics/fast/GeometricDissection.h"
 
-#include <Eigen/Cholesky>
-#include <Eigen/Core>
+#include "physics/EigenDense.h"
 #include <cholmod.h>
 
 #include <algorithm>

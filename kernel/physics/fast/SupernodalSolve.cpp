@@ -5,7 +5,7 @@
 
 #include "physics/ThreadPool.h"
 
-#include <Eigen/Core>
+#include "physics/EigenDense.h"
 
 #include <algorithm>
 #include <cassert>
