@@ -152,6 +152,8 @@ class LiveRelaxer {
         std::vector<Vec3> predicted, force;
     };
     std::optional<ResidualCheck> residualCheck_;
+    /// The residual check with `system`'s topology and law (UserError as ForceField's).
+    ResidualCheck& residualCheckFor(const MassSpringSystem& system);
     std::thread worker_; // last: starts after everything it uses exists
 };
 
