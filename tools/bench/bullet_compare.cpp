@@ -28,6 +28,7 @@
 //   --bullet-newton N  Newton iterations per Bullet step (BulletSettings::newtonIterations)
 
 #include "BenchScenes.h"
+#include "InstructionSet.h"
 
 #include "physics/Backends.h"
 #include "physics/Forces.h"
@@ -341,10 +342,10 @@ std::string loadAverage() {
 
 void printPreamble(const Settings& settings) {
     std::printf("netsculpt-bench-compare: tolerance %.0e, cap %.3g s per run, threads %s, %u "
-                "hardware threads\n",
+                "hardware threads, built for %s\n",
                 kTolerance, settings.cap,
                 settings.threads == 0 ? "automatic" : std::to_string(settings.threads).c_str(),
-                std::thread::hardware_concurrency());
+                std::thread::hardware_concurrency(), bench::instructionSet());
     std::printf(
         "rope: EA 2e5 N, compression ratio 0.01, knot 2 g, 6 g/m, bar 0.1 m; cr=1: the same "
         "with compression ratio 1\n");

@@ -18,6 +18,7 @@
 //   --trace        print the fast path's residual after every Newton iteration
 
 #include "BenchScenes.h"
+#include "InstructionSet.h"
 
 #include "physics/Forces.h"
 #include "physics/Relaxer.h"
@@ -230,8 +231,8 @@ int main(int argc, char** argv) {
     if (rk4Cap < 0)
         rk4Cap = quick ? 2.0 : 60.0;
     std::printf("netsculpt-bench-fast: rope EA 2e5 N, tolerance 1e-6, threads %s, %u hardware "
-                "threads\n", threads == 0 ? "automatic" : std::to_string(threads).c_str(),
-                std::thread::hardware_concurrency());
+                "threads, built for %s\n", threads == 0 ? "automatic" : std::to_string(threads).c_str(),
+                std::thread::hardware_concurrency(), bench::instructionSet());
     try {
         for (const Scene& scene : scenes)
             if (only.empty() || only == scene.name)

@@ -21,6 +21,7 @@
 #include "commands/Document.h"
 #include "interaction/DemoScenes.h"
 #include "interaction/LiveRelaxer.h"
+#include "InstructionSet.h"
 
 #include <algorithm>
 #include <chrono>
@@ -212,10 +213,10 @@ int main(int argc, char** argv) {
         const Piece start = doc.sculpture().pieces.begin()->second;
         const MassSpringSystem& system = doc.compiled().system;
         std::printf("netsculpt-bench-live: the studio's demo tube, %zu knots, %zu bars, %d x %d; "
-                    "preview backend %s, stiffness x%.3g, tolerance %.0e\n",
+                    "preview backend %s, stiffness x%.3g, tolerance %.0e; built for %s\n",
                     system.knotCount(), system.barCount(), start.rows, start.columns,
                     options.backend.c_str(), previewScale(system, options.previewStiffnessScale),
-                    options.previewTolerance);
+                    options.previewTolerance, bench::instructionSet());
         PublicationLog log;
         options.onPublish = [&log](const LiveState& state) { log.record(state); };
         LiveRelaxer live(options);

@@ -8,6 +8,8 @@
 //   netsculpt-bench-relax --quick    the 2k nets only, short caps (CI smoke)
 //   --threads N                      force the thread count (default: automatic)
 
+#include "InstructionSet.h"
+
 #include "physics/Forces.h"
 #include "physics/ReferenceNets.h"
 #include "physics/Relaxer.h"
@@ -100,8 +102,8 @@ int main(int argc, char** argv) {
     preview.stiffness = 200;
     const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
 
-    std::printf("netsculpt relax benchmark (%s), %u hardware threads\n\n", quick ? "quick" : "full",
-                hardware);
+    std::printf("netsculpt relax benchmark (%s), %u hardware threads, built for %s\n\n",
+                quick ? "quick" : "full", hardware, bench::instructionSet());
     std::printf("force function (Eq. 3), realistic rope at the start geometry\n");
     std::printf("%-6s %8s %8s %8s | %12s %9s %14s | %12s %9s\n", "net", "knots", "bars", "",
                 "passes/s 1T", "ns/bar", "knot-upd/s", "passes/s 2T", "ns/bar");
