@@ -385,7 +385,7 @@ void LiveRelaxer::runJob(Job& job) {
             // had before the edit make the fast path's predictor.
             // The same edit once more (a drag's next step) goes on as far as the last step went; its
             // hint is then the new law's tensions there.
-            if (previous_) continueNewRows(*previous_, soft);
+            const std::size_t continued = previous_ ? continueNewRows(*previous_, soft) : 0;
             std::vector<double> restChange;
             const std::vector<Vec3> startPositions = soft.position; // the step is measured from here
             const bool repeated = previous_ && extrapolate(*previous_, soft, restChange);
@@ -403,6 +403,15 @@ void LiveRelaxer::runJob(Job& job) {
             o.progressInterval = 0;
             double lastShown = 0, lastReport = 0;
             state.stiffnessScale = scale;
+            if (continued > 0) {
+                // New rows are shown at once where the rows above lead them: the caller has them
+                // at the document's Eq. 2 offsets, and the first iteration comes after the new
+                // topology's analysis (tens of ms at 20,000 knots).
+                LiveState shown = state;
+                shown.seconds = lastShown = seconds();
+                shown.positions = soft.position;
+                publish(std::move(shown));
+            }
             o.progress = [&](const RelaxProgress& p) {
                 if (p.positions.size() != soft.knotCount() || p.steps == 0) // the start: shown already
                     return;

@@ -12,6 +12,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <sstream>
 
 #ifdef __linux__
@@ -235,6 +236,45 @@ TEST_CASE("live relaxer: the hint holds the tensions before the edit, and new ro
         }
     }
     CHECK(newBars == 2 * 2 * 24);
+}
+
+TEST_CASE("live relaxer: new rows are shown where the rows above lead before the first iteration", "[live]") {
+    Scene scene;
+    scene.doc.execute(SetRowsCommand{scene.net, 12});
+    std::mutex mutex;
+    std::vector<LiveState> published;
+    LiveRelaxOptions options;
+    options.backend = "fast";
+    options.onPublish = [&](const LiveState& state) {
+        std::lock_guard lock(mutex);
+        published.push_back(state);
+    };
+    LiveRelaxer live(options);
+    live.preview(scene.doc.compiled().system, 1);
+    REQUIRE(live.waitIdle(60));
+    REQUIRE(live.latest()->converged);
+    scene.doc.adoptPositions(live.latest()->positions, false);
+    const MassSpringSystem before = scene.doc.compiled().system;
+
+    // Two more rows: the document has them at its Eq. 2 offsets; the preview's first shape has
+    // them where continueNewRows leads them, before any Newton iteration.
+    scene.doc.execute(SetRowsCommand{scene.net, 14});
+    const MassSpringSystem& grown = scene.doc.compiled().system;
+    MassSpringSystem expected = grown;
+    REQUIRE(continueNewRows(before, expected) == 2 * 24);
+    REQUIRE(expected.position != grown.position);
+    live.preview(grown, 2);
+    REQUIRE(live.waitIdle(60));
+    std::lock_guard lock(mutex);
+    const auto first = std::find_if(published.begin(), published.end(),
+                                    [](const LiveState& state) { return state.generation == 2; });
+    REQUIRE(first != published.end());
+    CHECK(first->running);
+    CHECK(first->steps == 0);
+    CHECK(first->positions == expected.position);
+    CHECK(published.back().generation == 2);
+    CHECK(published.back().converged);
+    CHECK(published.back().steps > 0);
 }
 
 TEST_CASE("live relaxer: a preview publishes every iteration's shape with a zero publish interval, only the "
