@@ -68,8 +68,15 @@ class App {
     void refine();
     double framesPerSecond() const { return fps_; }
     double maxTension() const { return renderer_.maxTension(); }
-    /// The report of the current shape (recomputed at most twice a second while things change).
+    /// What the forces of a report are: the relaxed shape's at the material's stiffness, a
+    /// preview shape's at the preview's stiffness, or a shape's that is neither.
+    enum class ReportBasis { Relaxed, Preview, NotRelaxed };
+    /// The report of the current shape: recomputed at most twice a second while a relaxation runs,
+    /// at once when it has ended (so the forces shown with a settled shape are its own).
     const nlohmann::json* report();
+    /// The basis of the last report() and, for a preview, its stiffness scale.
+    ReportBasis reportBasis() const { return reportBasis_; }
+    double reportPreviewScale() const { return reportPreviewScale_; }
     const std::vector<float>& residualHistory() const { return residualHistory_; }
     const std::optional<std::filesystem::path>& currentPath() const { return currentPath_; }
     const std::filesystem::path& sessionJournal() const { return sessionPath_; }
@@ -147,6 +154,8 @@ class App {
     bool reportValid_ = false;
     bool reportDirty_ = true;
     std::chrono::steady_clock::time_point reportTime_{};
+    ReportBasis reportBasis_ = ReportBasis::NotRelaxed;
+    double reportPreviewScale_ = 1;
 
     std::string notice_;
     bool noticeIsError_ = false;

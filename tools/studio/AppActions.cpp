@@ -209,12 +209,18 @@ nlohmann::json App::previewReport() const {
 
 const nlohmann::json* App::report() {
     const auto now = std::chrono::steady_clock::now();
-    if (reportDirty_ && now - reportTime_ > std::chrono::milliseconds(500)) {
+    const bool settled = !liveState_ || !liveState_->running;
+    if (reportDirty_ && (settled || now - reportTime_ > std::chrono::milliseconds(500))) {
         reportDirty_ = false;
         reportTime_ = now;
         try {
-            report_ = previewScaleShown() < 1 ? previewReport() : buildReport(*doc_);
+            const double preview = previewScaleShown();
+            report_ = preview < 1 ? previewReport() : buildReport(*doc_);
             reportValid_ = true;
+            const bool relaxed = liveState_ && liveState_->converged && liveState_->stiffnessScale == 1 &&
+                                 liveState_->generation == interaction_->version();
+            reportBasis_ = relaxed ? ReportBasis::Relaxed : preview < 1 ? ReportBasis::Preview : ReportBasis::NotRelaxed;
+            reportPreviewScale_ = preview;
         } catch (const std::exception& e) {
             reportValid_ = false;
             notify(std::string("report: ") + e.what(), true);

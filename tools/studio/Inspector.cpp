@@ -178,15 +178,18 @@ void Panels::drawReport(App& app) {
             if (m > load) load = m, where = rail.value("name", std::string());
         }
         ImGui::Text("largest rail load %.2f N (%s)", load, where.c_str());
-        const auto live = app.liveState();
-        const bool relaxed = live && live->converged && live->stiffnessScale == 1 &&
-                             live->generation == app.interaction().version();
         ImGui::TextDisabled("%zu slack bars", r.value("slack_bars", std::size_t{0}));
-        const double preview = app.previewScaleShown();
-        if (relaxed) ImGui::TextDisabled("relaxed shape");
-        else if (preview < 1)
-            ImGui::TextColored(ImVec4(0.95f, 0.75f, 0.3f, 1), "preview forces, x%.2g stiffness", preview);
-        else ImGui::TextColored(ImVec4(0.95f, 0.75f, 0.3f, 1), "not relaxed: forces are not final (Refine)");
+        // The basis the numbers above were computed on (not the live state now: the report is
+        // recomputed at most twice a second while a relaxation runs).
+        switch (app.reportBasis()) {
+        case App::ReportBasis::Relaxed: ImGui::TextDisabled("relaxed shape"); break;
+        case App::ReportBasis::Preview:
+            ImGui::TextColored(ImVec4(0.95f, 0.75f, 0.3f, 1), "preview forces, x%.2g stiffness", app.reportPreviewScale());
+            break;
+        case App::ReportBasis::NotRelaxed:
+            ImGui::TextColored(ImVec4(0.95f, 0.75f, 0.3f, 1), "not relaxed: forces are not final (Refine)");
+            break;
+        }
     } catch (const nlohmann::json::exception& e) {
         ImGui::TextDisabled("report: %s", e.what());
     }
