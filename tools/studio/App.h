@@ -71,8 +71,8 @@ class App {
     /// What the forces of a report are: the relaxed shape's at the material's stiffness, a
     /// preview shape's at the preview's stiffness, or a shape's that is neither.
     enum class ReportBasis { Relaxed, Preview, NotRelaxed };
-    /// The report of the current shape: recomputed at most twice a second while a relaxation runs,
-    /// at once when it has ended (so the forces shown with a settled shape are its own).
+    /// The report of the current shape: recomputed at most twice a second while things change, at
+    /// once when the relaxation of the current version has ended (its settled shape's forces).
     const nlohmann::json* report();
     /// The basis of the last report() and, for a preview, its stiffness scale.
     ReportBasis reportBasis() const { return reportBasis_; }

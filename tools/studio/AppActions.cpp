@@ -209,7 +209,8 @@ nlohmann::json App::previewReport() const {
 
 const nlohmann::json* App::report() {
     const auto now = std::chrono::steady_clock::now();
-    const bool settled = !liveState_ || !liveState_->running;
+    // The run for the shape shown has ended: its last shape's report is due now.
+    const bool settled = liveState_ && !liveState_->running && liveState_->generation == interaction_->version();
     if (reportDirty_ && (settled || now - reportTime_ > std::chrono::milliseconds(500))) {
         reportDirty_ = false;
         reportTime_ = now;
