@@ -140,6 +140,9 @@ class SupernodalCholesky {
     /// The parallel solve: the products L21 y of the forward substitution, supernode s's at
     /// belowStart_[s] in the scratch (each pulled by the supernodes holding its rows).
     void solveParallel(std::span<double> b, ThreadPool& pool) const;
+    /// Supernode s's part of L y' = y on the permuted right-hand side y: its diagonal solve and
+    /// its rows below times the result into scratch (maxRows_); returns the count of those rows.
+    std::int64_t solveForward(std::size_t s, double* y, double* scratch) const;
     /// Supernode s's part of L^T x = y' on the permuted right-hand side y (scratch: maxRows_).
     void solveBackward(std::size_t s, double* y, double* scratch) const;
     std::vector<std::int64_t> belowStart_;

@@ -32,25 +32,32 @@ void SupernodalCholesky::solve(std::span<double> b, ThreadPool* pool) const {
     Eigen::VectorXd scratch(static_cast<Eigen::Index>(maxRows_));
     // L y' = y
     for (std::size_t s = 0; s < supers; ++s) {
-        const std::int64_t cols = superStart_[s + 1] - superStart_[s];
-        const std::int64_t rowCount = rowStart_[s + 1] - rowStart_[s];
-        ConstMatrixMap l(values_.data() + valueStart_[s], rowCount, cols);
-        auto part = y.segment(superStart_[s], cols);
-        l.topRows(cols).triangularView<Eigen::Lower>().solveInPlace(part);
-        const std::int64_t below = rowCount - cols;
-        if (below == 0)
-            continue;
-        auto t = scratch.head(below);
-        t.noalias() = l.bottomRows(below) * part;
-        const std::int64_t* rows = rows_.data() + rowStart_[s] + cols;
+        const std::int64_t below = solveForward(s, y.data(), scratch.data());
+        const std::int64_t* rows = rows_.data() + rowStart_[s] + (superStart_[s + 1] - superStart_[s]);
         for (std::int64_t i = 0; i < below; ++i)
-            y[rows[i]] -= t[i];
+            y[rows[i]] -= scratch[i];
     }
     // L^T x = y'
     for (std::size_t s = supers; s-- > 0;)
         solveBackward(s, y.data(), scratch.data());
     for (std::size_t k = 0; k < dimension_; ++k)
         b[static_cast<std::size_t>(perm_[k])] = y[static_cast<Eigen::Index>(k)];
+}
+
+// Supernode s's part of L y' = y, its descendants' products already taken from its entries of y:
+// its diagonal block's triangle solved, then the product of its rows below with the result in
+// scratch (one entry per row below, in their order). Returns how many rows are below.
+std::int64_t SupernodalCholesky::solveForward(std::size_t s, double* yData, double* scratch) const {
+    const std::int64_t cols = superStart_[s + 1] - superStart_[s];
+    const std::int64_t rowCount = rowStart_[s + 1] - rowStart_[s];
+    ConstMatrixMap l(values_.data() + valueStart_[s], rowCount, cols);
+    Eigen::Map<Eigen::VectorXd> y(yData, static_cast<Eigen::Index>(dimension_));
+    auto part = y.segment(superStart_[s], cols);
+    l.topRows(cols).triangularView<Eigen::Lower>().solveInPlace(part);
+    const std::int64_t below = rowCount - cols;
+    if (below > 0)
+        Eigen::Map<Eigen::VectorXd>(scratch, below).noalias() = l.bottomRows(below) * part;
+    return below;
 }
 
 // Supernode s's part of L^T x = y': its entries of y minus its rows below times their (final)
@@ -90,8 +97,6 @@ void SupernodalCholesky::solveParallel(std::span<double> b, ThreadPool& pool) co
                                          Eigen::VectorXd(static_cast<Eigen::Index>(maxRows_)));
 
     auto forward = [&](std::size_t s, Eigen::VectorXd& t) {
-        const std::int64_t cols = superStart_[s + 1] - superStart_[s];
-        const std::int64_t rowCount = rowStart_[s + 1] - rowStart_[s];
         for (std::int64_t u = updateStart_[s]; u < updateStart_[s + 1]; ++u) {
             const Update& update = updates_[static_cast<std::size_t>(u)];
             const std::size_t d = update.source;
@@ -101,15 +106,8 @@ void SupernodalCholesky::solveParallel(std::span<double> b, ThreadPool& pool) co
             for (std::uint32_t i = update.begin; i < update.end; ++i)
                 y[sourceRows[i]] -= product[i];
         }
-        ConstMatrixMap l(values_.data() + valueStart_[s], rowCount, cols);
-        auto part = y.segment(superStart_[s], cols);
-        l.topRows(cols).triangularView<Eigen::Lower>().solveInPlace(part);
-        const std::int64_t below = rowCount - cols;
-        if (below == 0)
-            return;
-        auto head = t.head(below);
-        head.noalias() = l.bottomRows(below) * part;
-        std::copy(head.data(), head.data() + below, belowProducts_.data() + belowStart_[s]);
+        const std::int64_t below = solveForward(s, y.data(), t.data());
+        std::copy(t.data(), t.data() + below, belowProducts_.data() + belowStart_[s]);
     };
     auto backward = [&](std::size_t s, Eigen::VectorXd& t) { solveBackward(s, y.data(), t.data()); };
 
