@@ -209,8 +209,9 @@ nlohmann::json App::previewReport() const {
 
 const nlohmann::json* App::report() {
     const auto now = std::chrono::steady_clock::now();
+    const bool current = liveState_ && liveState_->generation == interaction_->version();
     // The run for the shape shown has ended: its last shape's report is due now.
-    const bool settled = liveState_ && !liveState_->running && liveState_->generation == interaction_->version();
+    const bool settled = current && !liveState_->running;
     if (reportDirty_ && (settled || now - reportTime_ > std::chrono::milliseconds(500))) {
         reportDirty_ = false;
         reportTime_ = now;
@@ -218,8 +219,7 @@ const nlohmann::json* App::report() {
             const double preview = previewScaleShown();
             report_ = preview < 1 ? previewReport() : buildReport(*doc_);
             reportValid_ = true;
-            const bool relaxed = liveState_ && liveState_->converged && liveState_->stiffnessScale == 1 &&
-                                 liveState_->generation == interaction_->version();
+            const bool relaxed = current && liveState_->converged && liveState_->stiffnessScale == 1;
             reportBasis_ = relaxed ? ReportBasis::Relaxed : preview < 1 ? ReportBasis::Preview : ReportBasis::NotRelaxed;
             reportPreviewScale_ = preview;
         } catch (const std::exception& e) {
