@@ -316,7 +316,7 @@ bool LiveRelaxer::extrapolate(const MassSpringSystem& previous, MassSpringSystem
     for (std::size_t b = 0; b < next.barCount(); ++b) restChange[b] = next.restLength[b] - previous.restLength[b];
     // The residual test's force field is made ready at a drag's first step, which takes more
     // than a frame anyway (no predictor yet), so that the second one does not pay for it.
-    residualCheckFor(next);
+    ResidualCheck& check = residualCheckFor(next);
     if (!lastStep_ || lastStep_->restChange.size() != restChange.size()) return false;
     // This edit as a multiple of the last one: rho = <now, last> / <last, last>, and what is left
     // over must be small.
@@ -335,7 +335,6 @@ bool LiveRelaxer::extrapolate(const MassSpringSystem& previous, MassSpringSystem
     }
     if (!(rho > 0 && rho <= 2) || offSquared > kRepeatTolerance * kRepeatTolerance * nowSquared) return false;
     // Kept only when it is nearer the new equilibrium than the shape it starts from.
-    ResidualCheck& check = residualCheckFor(next);
     check.predicted.assign(next.position.begin(), next.position.end());
     for (std::size_t j = 0; j < next.knotCount(); ++j)
         if (!next.fixed[j]) check.predicted[j] += lastStep_->displacement[j] * rho;
