@@ -142,6 +142,9 @@ void NewtonRun::runStage(const Stage& stage, bool lastStage, bool slack) {
             break;
         }
         solve();
+        bent_ = scale_ == 1.0;
+        if (bent_)
+            bendStep();
         double slope = 0;
         for (std::uint32_t j : analysis_.freeKnots)
             slope += force_[j].dot(step_[j]);
@@ -167,7 +170,7 @@ void NewtonRun::runStage(const Stage& stage, bool lastStage, bool slack) {
         residual_ = evaluate(x_);
         if (lastStage)
             keepIfBest();
-        if (alpha == 1.0)
+        if (alpha >= 1.0)
             shift_ = std::max(shift_ * 0.1, minShift);
         if (!mixed && !windy_ && slack)
             adaptDamping(alpha, slope, fullChange);
@@ -204,7 +207,7 @@ bool NewtonRun::assembleAndFactorize(bool mixed, int& exactPause) {
     return ok;
 }
 
-/// The step length along step_: mixed, the first halving whose residual stays below
+/// The step length along the step's path (displacement()): mixed, the first halving whose residual stays below
 /// kMixedGrowth times the stage's best; with wind, Armijo on the residual's merit; else Armijo
 /// on the energy with safeguarded quadratic interpolation (fullChange: the full step's energy
 /// change). accepted: false when no length passed (the energy way also when slope <= 0).
@@ -214,7 +217,7 @@ double NewtonRun::searchLine(bool mixed, double slope, double best, bool& accept
     if (mixed) {
         for (int k = 0; k < kMaxBacktracks && !accepted; ++k, alpha *= 0.5) {
             for (std::uint32_t j : analysis_.freeKnots)
-                trial_[j] = x_[j] + step_[j] * alpha;
+                trial_[j] = x_[j] + displacement(j, alpha);
             const double r = evaluate(trial_);
             accepted = r < kMixedGrowth * best;
             if (accepted)
@@ -224,7 +227,7 @@ double NewtonRun::searchLine(bool mixed, double slope, double best, bool& accept
         const double merit = meritOf(x_);
         for (int k = 0; k < kMaxBacktracks && !accepted; ++k, alpha *= 0.5) {
             for (std::uint32_t j : analysis_.freeKnots)
-                trial_[j] = x_[j] + step_[j] * alpha;
+                trial_[j] = x_[j] + displacement(j, alpha);
             accepted = meritOf(trial_) <= (1 - 2 * kArmijo * alpha) * merit;
             if (accepted)
                 break;
@@ -249,8 +252,24 @@ double NewtonRun::searchLine(bool mixed, double slope, double best, bool& accept
             }
             alpha = next;
         }
+        if (accepted && alpha == 1.0 && bent_ && fullChange < -kExpandDecrease * slope)
+            alpha = expandStep(slope, fullChange);
     }
     return alpha;
+}
+
+/// The longest of 2, 4, ... kMaxExpansion times a full step along the bent path up to which the
+/// energy keeps falling (1 when twice is no lower).
+double NewtonRun::expandStep(double slope, double fullChange) {
+    double best = 1, bestChange = fullChange;
+    for (double alpha = 2; alpha <= kMaxExpansion; alpha *= 2) {
+        const double change = energyChange(alpha);
+        if (!(std::isfinite(change) && change < bestChange && change <= -kArmijo * alpha * slope))
+            break;
+        best = alpha;
+        bestChange = change;
+    }
+    return best;
 }
 
 /// Trust-region style update of the weight-scaled shift (slack nets, energy stages) from the
@@ -265,7 +284,7 @@ void NewtonRun::adaptDamping(double alpha, double slope, double fullChange) {
         }
     const double predicted = 0.5 * (slope + damped);
     const double ratio = predicted > 0 ? -fullChange / predicted : 0.0;
-    if (alpha == 1.0 && ratio > kRatioGood)
+    if (alpha >= 1.0 && ratio > kRatioGood)
         damping_ = damping_ * kDampingDown < kDampingMin ? 0.0 : damping_ * kDampingDown;
     else if (alpha < kDampingCut || ratio < kRatioPoor)
         damping_ = std::max(damping_ * kDampingUp, kDampingMin);

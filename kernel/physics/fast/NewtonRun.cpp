@@ -11,7 +11,7 @@ NewtonRun::NewtonRun(MassSpringSystem& system, const RelaxOptions& options,
                      Clock::time_point start)
     : system_(system), options_(options), analysis_(analysis), stats_(statistics), start_(start),
       field_(analysis.field), x_(analysis.x), trial_(analysis.trial), force_(analysis.force),
-      step_(analysis.step), tension_(analysis.tension), kCompression_(analysis.kCompression),
+      step_(analysis.step), bend_(analysis.bend), tension_(analysis.tension), kCompression_(analysis.kCompression),
       barBlock_(analysis.barBlock), values_(analysis.values), rhs_(analysis.rhs),
       barTerm_(analysis.barTerm), weightOf_(analysis.weightOf),
       dampingUnit_(analysis.dampingUnit), bestX_(analysis.bestX) {
@@ -24,6 +24,7 @@ NewtonRun::NewtonRun(MassSpringSystem& system, const RelaxOptions& options,
     trial_ = x_;
     force_.assign(knots, Vec3{});
     step_.assign(knots, Vec3{});
+    bend_.assign(knots, Vec3{});
     tension_.assign(bars, 0.0);
     kCompression_ = system.kCompression;
     rhs_.assign(3 * analysis.freeKnots.size(), 0.0);
@@ -181,6 +182,43 @@ void NewtonRun::solve() {
     stats_.solveSeconds += secondsSince(t0);
 }
 
+/// bend_ = the correction c that undoes, to second order, the stretch a full step p causes by
+/// turning bars: (H + mu I) c = -sum_b k_b r_b grad l_b, r_b = (|dp|^2 - (u . dp)^2) / l the second
+/// derivative of bar b's length along p (dp its ends' relative step, u its direction), with the
+/// factor of the step; the sums per knot in the fixed order of ForceField::barsOfKnot.
+void NewtonRun::bendStep() {
+    forRange(system_.barCount(), [&](std::size_t begin, std::size_t end, std::size_t) {
+        for (std::size_t b = begin; b < end; ++b) {
+            const std::uint32_t a = system_.barA[b], e = system_.barB[b];
+            const double l = distance(x_[a], x_[e]);
+            const Vec3 dp = step_[e] - step_[a];
+            const double along = l > 0 ? (x_[e] - x_[a]).dot(dp) / l : 0.0;
+            const double k = (l > system_.restLength[b] ? system_.kTension[b] : kCompression_[b]) *
+                             scale_;
+            barTerm_[b] = l > 0 ? k * (dp.dot(dp) - along * along) / (l * l) : 0.0; // k r_b / l
+        }
+    });
+    const std::size_t freeCount = analysis_.freeKnots.size();
+    forRange(freeCount, [&](std::size_t begin, std::size_t end, std::size_t) {
+        for (std::size_t f = begin; f < end; ++f) {
+            const std::uint32_t j = analysis_.freeKnots[f];
+            Vec3 sum{};
+            for (std::uint32_t b : field_.barsOfKnot(j)) {
+                const std::uint32_t other = system_.barA[b] == j ? system_.barB[b] : system_.barA[b];
+                sum += (x_[other] - x_[j]) * barTerm_[b]; // -k r_b grad_j l_b
+            }
+            rhs_[3 * f] = sum.x;
+            rhs_[3 * f + 1] = sum.y;
+            rhs_[3 * f + 2] = sum.z;
+        }
+    });
+    const auto t0 = Clock::now();
+    analysis_.cholesky.solve(rhs_, pool_.get());
+    stats_.solveSeconds += secondsSince(t0);
+    for (std::size_t f = 0; f < freeCount; ++f)
+        bend_[analysis_.freeKnots[f]] = Vec3{rhs_[3 * f], rhs_[3 * f + 1], rhs_[3 * f + 2]};
+}
+
 /// E(x + alpha step) - E(x) at the current scale, bar by bar in a form exact to the relative
 /// accuracy of the change itself (so the line search still sees a decrease near convergence).
 double NewtonRun::energyChange(double alpha) {
@@ -188,7 +226,7 @@ double NewtonRun::energyChange(double alpha) {
         for (std::size_t b = begin; b < end; ++b) {
             const std::uint32_t a = system_.barA[b], e = system_.barB[b];
             const Vec3 d = x_[e] - x_[a];
-            const Vec3 change = (step_[e] - step_[a]) * alpha;
+            const Vec3 change = displacement(e, alpha) - displacement(a, alpha);
             const Vec3 moved = d + change;
             const double l = d.norm(), lNew = moved.norm(), rest = system_.restLength[b];
             const double k = (l > rest ? system_.kTension[b] : kCompression_[b]) * scale_;
@@ -207,7 +245,7 @@ double NewtonRun::energyChange(double alpha) {
     for (double term : barTerm_)
         change += term;
     for (std::uint32_t j : analysis_.freeKnots)
-        change -= (system_.gravity * system_.mass[j]).dot(step_[j]) * alpha;
+        change -= (system_.gravity * system_.mass[j]).dot(displacement(j, alpha));
     return change;
 }
 
@@ -240,7 +278,7 @@ void NewtonRun::takeStep(double alpha, bool mixed) {
             }
         });
     for (std::uint32_t j : analysis_.freeKnots)
-        x_[j] += step_[j] * alpha;
+        x_[j] += displacement(j, alpha);
 }
 
 /// Keeps x_ as the last stage's best state when its residual is the lowest so far.
@@ -265,6 +303,7 @@ void NewtonRun::hintedStart(double tolerance) {
     const std::span<const double> hint = options_.startTensions;
     const std::vector<Vec3> start = x_;
     const double startResidual = residual_;
+    bent_ = false;
     for (std::size_t b = 0; b < system_.barCount(); ++b) {
         tension_[b] = hint[b];
         kCompression_[b] = hint[b] > 0 ? std::max(system_.kCompression[b], system_.kTension[b])

@@ -96,6 +96,18 @@ constexpr int kMixedPatience = 4;
 // An accepted step shorter than this (a fraction of the Newton step) raises the shift (not on a
 // stage's first iteration, whose direction is poor by nature from a cold start).
 constexpr double kSmallStep = 0.2;
+// At the material's stiffness (stiffness scale 1) every step is bent: a step that turns bars
+// moves their ends along straight lines, which stretches each such bar by |turn|^2 / 2l, and at
+// the rope's stiffness a micrometre of stretch is many knot weights. Where the net has to move far
+// with almost no change in its bars' lengths (the free edge of a net hanging in vertical strands
+// that swing and twist), straight steps are therefore cut to a fraction of a millimetre and the
+// run creeps. The path tried is x + a p + a^2 / 2 c instead, c the correction that undoes that
+// stretch to second order (the geodesic acceleration of Levenberg-Marquardt methods), solved with
+// the step's factor. A full step along it whose energy decrease is more than kExpandDecrease of
+// the slope (the quadratic model predicts half) is tried at twice, four times ... the length, up
+// to kMaxExpansion, while the energy keeps falling.
+constexpr double kExpandDecrease = 0.75;
+constexpr double kMaxExpansion = 4096;
 // After the exact Hessian was found indefinite, the projected one is used for this many
 // iterations before the exact one is tried again.
 constexpr int kExactPause = 3;
@@ -137,6 +149,10 @@ class NewtonRun {
     void assemble(bool mixed, bool exact);
     bool factorize();
     void solve();
+    void bendStep();
+    Vec3 displacement(std::size_t j, double alpha) const {
+        return bent_ ? step_[j] * alpha + bend_[j] * (0.5 * alpha * alpha) : step_[j] * alpha;
+    }
     double energyChange(double alpha);
     double meritOf(const std::vector<Vec3>& at);
     void takeStep(double alpha, bool mixed);
@@ -147,6 +163,7 @@ class NewtonRun {
     void runStage(const Stage& stage, bool lastStage, bool slack);
     bool assembleAndFactorize(bool mixed, int& exactPause);
     double searchLine(bool mixed, double slope, double best, bool& accepted, double& fullChange);
+    double expandStep(double slope, double fullChange);
     void adaptDamping(double alpha, double slope, double fullChange);
     RelaxResult finish(double tolerance);
     bool stopRequested();
@@ -165,7 +182,8 @@ class NewtonRun {
     std::vector<Vec3>& x_;
     std::vector<Vec3>& trial_;
     std::vector<Vec3>& force_;
-    std::vector<Vec3>& step_;
+    std::vector<Vec3>& step_;            ///< the Newton step p
+    std::vector<Vec3>& bend_;            ///< its second-order correction c (when bent_)
     std::vector<double>& tension_;      ///< mixed stage: the bars' tension estimates, N
     std::vector<double>& kCompression_; ///< the stage's compression stiffness per bar, N/m at scale 1
     HugePageArray& barBlock_;           ///< 9 per bar: its Hessian block
@@ -174,6 +192,7 @@ class NewtonRun {
     std::vector<double>& barTerm_;      ///< per bar scratch for sums done in a fixed order
     std::vector<double>& weightOf_;     ///< m_j |g| per knot
     double scale_ = 1;
+    bool bent_ = false; ///< the current step's path is x + a p + a^2 / 2 c
     double compressionBlend_ = 0;
     double residual_ = 0;            ///< at x_, current scale
     double shift_ = kMinShift;       ///< lambda of the Levenberg shift
