@@ -109,9 +109,12 @@ nlohmann::json buildReport(const Sculpture& s, const CompiledSculpture& c,
     report["relaxed"] = status.relaxed;
     report["residual"] = physical ? residual(sys) : 0.0;
     const RelaxResult& r = status.last;
-    report["relax"] = {{"converged", r.converged}, {"residual", r.residual},
-                       {"steps", r.steps},         {"seconds", r.seconds},
-                       {"backend", r.backend},     {"stop_reason", r.stopReason}};
+    // Every run has a stop reason; a document that ran none (a snapshot opened) has no last run.
+    report["relax"] = r.stopReason.empty()
+                          ? json(nullptr)
+                          : json{{"converged", r.converged}, {"residual", r.residual},
+                                 {"steps", r.steps},         {"seconds", r.seconds},
+                                 {"backend", r.backend},     {"stop_reason", r.stopReason}};
     report["knots"] = sys.knotCount();
     report["bars"] = sys.barCount();
 

@@ -5,7 +5,8 @@
 // Keys (lengths m, masses kg, forces N, vectors {x, y, z}):
 //   relaxed (a relaxation converged since the last change), residual (max |F_j| / (m_j |g|) over
 //   free knots now), relax {converged, residual, steps, seconds, backend, stop_reason} of the last
-//   relaxation, knots, bars (distinct, whole sculpture), total_mass, total_weight, rope_length,
+//   relaxation run on the document since it was opened (null when none was: a shape read
+//   from a snapshot keeps only whether it was relaxed), knots, bars (distinct, whole sculpture), total_mass, total_weight, rope_length,
 //   max_tension, max_tension_at {bar, piece, a {row, column}, b {row, column}} (null without
 //   bars), slack_bars (bars shorter than their rest length by more than 1e-9 relative: in
 //   compression), force_balance {reaction_sum, expected (= -total mass x gravity), difference,

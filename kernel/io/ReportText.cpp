@@ -66,7 +66,10 @@ std::string topText(const json& top) {
 std::string reportMarkdown(const json& r) {
     std::string md = "# netsculpt report\n\n";
     const json& relax = r["relax"];
-    if (r["relaxed"].get<bool>())
+    if (r["relaxed"].get<bool>() && relax.is_null())
+        md += "Shape: **relaxed** (residual " + g6(r["residual"]) +
+              "; relaxed before the file was saved).\n\n";
+    else if (r["relaxed"].get<bool>())
         md += "Shape: **relaxed** (residual " + g6(r["residual"]) + ", " +
               relax["backend"].get<std::string>() + ", " +
               std::to_string(relax["steps"].get<long long>()) + " steps, " + g6(relax["seconds"]) +

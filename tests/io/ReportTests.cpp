@@ -222,3 +222,27 @@ TEST_CASE("a Document's report and export say whether its shape is relaxed") {
     CHECK(Vec3{p[0].get<double>(), p[1].get<double>(), p[2].get<double>()} ==
           doc.compiled().system.position[20]);
 }
+
+TEST_CASE("the report of an opened snapshot says it was relaxed, without inventing a run") {
+    Document doc;
+    const RailId rail = doc.execute(AddRailCommand{"ring", polygonRail(10, 0.8, 2.0)}).rails.at(0);
+    const PieceId piece =
+        doc.execute(AttachToRailCommand{{rail, 10, 0, 6, 0.3, 0, false}}).pieces.at(0);
+    doc.execute(SetMaterialCommand{piece, softRope()});
+    DocumentRelaxOptions options;
+    options.backend = "fast";
+    REQUIRE(doc.relax(options).converged);
+    CHECK(buildReport(doc)["relax"]["backend"] == "fast");
+    const auto file = outputDir("snapshot") / "relaxed.nets";
+    doc.saveSnapshot(file);
+
+    const Document opened = Document::load(file);
+    const nlohmann::json r = buildReport(opened);
+    CHECK(r["relaxed"] == true);
+    CHECK(r["relax"].is_null()); // no run since it was opened: no backend, steps or time to show
+    CHECK(r["residual"].get<double>() < 1e-6);
+    const std::string text = reportMarkdown(r);
+    CHECK_THAT(text, Contains("Shape: **relaxed** (residual "));
+    CHECK_THAT(text, Contains("relaxed before the file was saved"));
+    CHECK_THAT(text, !Contains("steps"));
+}
