@@ -26,6 +26,14 @@ std::size_t lineCount(const std::string& text) {
     return std::size_t(std::count(text.begin(), text.end(), '\n'));
 }
 
+/// A piece of 10 columns and 6 rows on a ring of 10 points, in soft rope: relaxes in a moment.
+void addSoftRing(Document& doc) {
+    const RailId rail = doc.execute(AddRailCommand{"ring", polygonRail(10, 0.8, 2.0)}).rails.at(0);
+    const PieceId piece =
+        doc.execute(AttachToRailCommand{{rail, 10, 0, 6, 0.3, 0, false}}).pieces.at(0);
+    doc.execute(SetMaterialCommand{piece, softRope()});
+}
+
 } // namespace
 
 TEST_CASE("report of a single open sheet: counts, rope length and mass by hand") {
@@ -196,10 +204,7 @@ TEST_CASE("report as Markdown and CSV tables") {
 
 TEST_CASE("a Document's report and export say whether its shape is relaxed") {
     Document doc;
-    const RailId rail = doc.execute(AddRailCommand{"ring", polygonRail(10, 0.8, 2.0)}).rails.at(0);
-    const PieceId piece =
-        doc.execute(AttachToRailCommand{{rail, 10, 0, 6, 0.3, 0, false}}).pieces.at(0);
-    doc.execute(SetMaterialCommand{piece, softRope()});
+    addSoftRing(doc);
     CHECK(buildReport(doc)["relaxed"] == false);
 
     DocumentRelaxOptions options;
@@ -225,10 +230,7 @@ TEST_CASE("a Document's report and export say whether its shape is relaxed") {
 
 TEST_CASE("the report of an opened snapshot says it was relaxed, without inventing a run") {
     Document doc;
-    const RailId rail = doc.execute(AddRailCommand{"ring", polygonRail(10, 0.8, 2.0)}).rails.at(0);
-    const PieceId piece =
-        doc.execute(AttachToRailCommand{{rail, 10, 0, 6, 0.3, 0, false}}).pieces.at(0);
-    doc.execute(SetMaterialCommand{piece, softRope()});
+    addSoftRing(doc);
     DocumentRelaxOptions options;
     options.backend = "fast";
     REQUIRE(doc.relax(options).converged);
