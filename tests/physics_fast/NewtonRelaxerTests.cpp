@@ -216,7 +216,7 @@ TEST_CASE("fast: a realistic slack sheet converges", "[fast]") {
     CHECK(compressed > 0); // it is slack at equilibrium too
 }
 
-/// A banner: 45 rows x 51 columns on a wavy open rail, free at its sides and bottom, its bars
+/// A banner: 45 rows x 41 columns on a wavy open rail, free at its sides and bottom, its bars
 /// 0.1 m at the top and 0.14 m at the last row. Its free edges collapse into vertical strands of
 /// knots joined by slightly compressed bars, which swing and twist almost freely.
 Sculpture banner() {
@@ -226,7 +226,7 @@ Sculpture banner() {
     wave.spline = true;
     wave.points = {{0, 0, 12.5}, {1, 0.8, 13.0}, {2, 0, 12.5}, {3, 0.8, 13.0}, {4, 0, 12.5}};
     const RailId rail = addRail(s, "wave", wave);
-    const PieceId piece = attachToRail(s, {rail, 51, 0, 45, 0.12, 0, false});
+    const PieceId piece = attachToRail(s, {rail, 41, 0, 45, 0.12, 0, false});
     setBarLengthByRow(s, piece, 0, 0.1);
     setBarLengthByRow(s, piece, 44, 0.14);
     setMaterial(s, piece, rope(2e5));
@@ -234,15 +234,16 @@ Sculpture banner() {
     return s;
 }
 
-TEST_CASE("fast: a banner whose free edges collapse into strands converges in a few hundred "
+TEST_CASE("fast: a banner whose free edges collapse into strands converges within 1,000 "
           "iterations",
           "[fast]") {
-    // Straight Newton steps took 986 iterations here (they turn the strands' bars and so
-    // stretch them); bent ones about 120.
+    // Straight Newton steps took 2,821 iterations here (they turn the strands' bars and so
+    // stretch them); bent ones about 140. (The number moves a lot with any change to the path:
+    // with the soft stages' steps straight too it was 468.)
     MassSpringSystem system = compileSculpture(banner()).system;
     FastRelaxer relaxer;
     RelaxOptions options;
-    options.maxSteps = 400;
+    options.maxSteps = 1000;
     const RelaxResult result = relaxer.relax(system, options);
     REQUIRE(result.converged);
     CHECK(residual(system) < 1e-6);

@@ -107,14 +107,14 @@ std::vector<Stage> NewtonRun::planStages(double softScale, bool warm) const {
     const double tolerance = options_.tolerance;
     std::vector<Stage> stages;
     if (softScale < 1.0) {
-        stages.push_back({softScale, std::max(kSoftTolerance, tolerance), false, 0.0});
+        stages.push_back({softScale, std::max(kSoftTolerance, tolerance), false, 0.0, false});
         for (double s = softScale * kStageFactor; s < 1 / std::sqrt(kStageFactor); s *= kStageFactor)
-            stages.push_back({s, std::max(kSoftTolerance, tolerance), false, 0.0});
+            stages.push_back({s, std::max(kSoftTolerance, tolerance), false, 0.0, true});
         for (double blend : kFinalBlends)
             if (blend > 0)
-                stages.push_back({1.0, std::max(kBlendTolerance, tolerance), true, blend});
+                stages.push_back({1.0, std::max(kBlendTolerance, tolerance), true, blend, true});
     }
-    stages.push_back({1.0, tolerance, warm || softScale < 1.0, 0.0});
+    stages.push_back({1.0, tolerance, warm || softScale < 1.0, 0.0, true});
     return stages;
 }
 
@@ -142,7 +142,7 @@ void NewtonRun::runStage(const Stage& stage, bool lastStage, bool slack) {
             break;
         }
         solve();
-        bent_ = scale_ == 1.0;
+        bent_ = stage.bent;
         if (bent_)
             bendStep();
         double slope = 0;

@@ -96,9 +96,11 @@ constexpr int kMixedPatience = 4;
 // An accepted step shorter than this (a fraction of the Newton step) raises the shift (not on a
 // stage's first iteration, whose direction is poor by nature from a cold start).
 constexpr double kSmallStep = 0.2;
-// At the material's stiffness (stiffness scale 1) every step is bent: a step that turns bars
+// Every stage but a cold start's soft one bends its steps: a step that turns bars
 // moves their ends along straight lines, which stretches each such bar by |turn|^2 / 2l, and at
-// the rope's stiffness a micrometre of stretch is many knot weights. Where the net has to move far
+// the rope's stiffness a micrometre of stretch is many knot weights (the soft stage's rope, 20
+// times the load per held knot, is soft enough for straight steps, and its strains of a few per
+// cent are beyond a second-order path). Where the net has to move far
 // with almost no change in its bars' lengths (the free edge of a net hanging in vertical strands
 // that swing and twist), straight steps are therefore cut to a fraction of a millimetre and the
 // run creeps. The path tried is x + a p + a^2 / 2 c instead, c the correction that undoes that
@@ -124,6 +126,7 @@ struct Stage {
     double tolerance;
     bool mixed;
     double blend; ///< compression stiffness max(k_c, blend k_s)
+    bool bent;    ///< its steps are bent (every stage but a cold start's soft one)
 };
 
 /// One relaxation: the Newton iteration and its bookkeeping.
