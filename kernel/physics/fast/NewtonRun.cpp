@@ -326,11 +326,16 @@ void NewtonRun::hintedStart(double tolerance) {
         if (!factored)
             break;
         solve();
+        // The first iteration is the edit's tangent predictor; the ones after it correct the bars
+        // it turned, with bent steps (NewtonRun.h: a row step's three iterations become two).
+        bent_ = steps_ - first > 1;
+        if (bent_)
+            bendStep();
         double alpha = 1;
         bool accepted = false;
         for (int k = 0; k < kMaxBacktracks && !accepted; ++k, alpha *= 0.5) {
             for (std::uint32_t j : analysis_.freeKnots)
-                trial_[j] = x_[j] + step_[j] * alpha;
+                trial_[j] = x_[j] + displacement(j, alpha);
             accepted = evaluate(trial_) < kMixedGrowth * best;
             if (accepted)
                 break;
