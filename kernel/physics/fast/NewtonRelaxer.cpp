@@ -28,13 +28,14 @@ RelaxResult NewtonRun::run() {
     // Stages: an optional soft one (cold start), then the material's stiffness.
     double softScale = 1.0;
     bool warm = false;
+    const double ratio = axialToLoad();
     if (!analysis_.freeKnots.empty() && !(residual_ < tolerance)) {
         warm = isWarm();
         if (options_.continuation && !warm)
-            softScale = softStageScale();
+            softScale = softStageScale(ratio);
     }
     stats_.softScale = softScale;
-    const std::vector<Stage> stages = planStages(softScale, warm);
+    const std::vector<Stage> stages = planStages(softScale, warm, ratio);
 
     if (analysis_.freeKnots.empty() || residual_ < tolerance)
         stopReason_ = "converged";
@@ -86,35 +87,41 @@ bool NewtonRun::isWarm() const {
            maxStrain <= kWarmMaxStrain && residual_ <= kWarmMaxResidual;
 }
 
-/// The soft stage's stiffness scale for a cold start: the softest bar's EA brought to
-/// kSoftLoadFactor times the mean load per held knot; 1 (no soft stage) when that would not
-/// soften the material by at least kMaxSoftScale.
-double NewtonRun::softStageScale() const {
+/// The softest bar's EA over the mean load per held knot, at scale 1.
+double NewtonRun::axialToLoad() const {
     double minAxial = std::numeric_limits<double>::infinity();
     for (std::size_t b = 0; b < system_.barCount(); ++b)
         minAxial = std::min(minAxial, system_.kTension[b] * system_.restLength[b]);
     const std::size_t held = system_.knotCount() - analysis_.freeKnots.size();
     const double meanHeldLoad =
         totalWeight(system_) / static_cast<double>(std::max<std::size_t>(held, 1));
-    const double scale = std::min(1.0, kSoftLoadFactor * meanHeldLoad / minAxial);
+    return minAxial / meanHeldLoad;
+}
+
+/// The soft stage's stiffness scale for a cold start: the softest bar's EA brought to
+/// kSoftLoadFactor times the mean load per held knot; 1 (no soft stage) when that would not
+/// soften the material by at least kMaxSoftScale.
+double NewtonRun::softStageScale(double axialToLoad) const {
+    const double scale = std::min(1.0, kSoftLoadFactor / axialToLoad);
     return scale <= kMaxSoftScale ? scale : 1.0;
 }
 
 /// The stages of a run: from a soft scale below 1, that stage, the intermediate ones (slack
 /// nets only, decided in run()), the compression blends; always the material's last, mixed
 /// when the start is warm or the run comes from a softer stage.
-std::vector<Stage> NewtonRun::planStages(double softScale, bool warm) const {
+std::vector<Stage> NewtonRun::planStages(double softScale, bool warm, double axialToLoad) const {
     const double tolerance = options_.tolerance;
+    const auto bent = [&](double scale) { return scale * axialToLoad >= kBendAxialToLoad; };
     std::vector<Stage> stages;
     if (softScale < 1.0) {
-        stages.push_back({softScale, std::max(kSoftTolerance, tolerance), false, 0.0, false});
+        stages.push_back({softScale, std::max(kSoftTolerance, tolerance), false, 0.0, bent(softScale)});
         for (double s = softScale * kStageFactor; s < 1 / std::sqrt(kStageFactor); s *= kStageFactor)
-            stages.push_back({s, std::max(kSoftTolerance, tolerance), false, 0.0, true});
+            stages.push_back({s, std::max(kSoftTolerance, tolerance), false, 0.0, bent(s)});
         for (double blend : kFinalBlends)
             if (blend > 0)
-                stages.push_back({1.0, std::max(kBlendTolerance, tolerance), true, blend, true});
+                stages.push_back({1.0, std::max(kBlendTolerance, tolerance), true, blend, bent(1.0)});
     }
-    stages.push_back({1.0, tolerance, warm || softScale < 1.0, 0.0, true});
+    stages.push_back({1.0, tolerance, warm || softScale < 1.0, 0.0, bent(1.0)});
     return stages;
 }
 

@@ -96,18 +96,20 @@ constexpr int kMixedPatience = 4;
 // An accepted step shorter than this (a fraction of the Newton step) raises the shift (not on a
 // stage's first iteration, whose direction is poor by nature from a cold start).
 constexpr double kSmallStep = 0.2;
-// Every stage but a cold start's soft one bends its steps: a step that turns bars
-// moves their ends along straight lines, which stretches each such bar by |turn|^2 / 2l, and at
-// the rope's stiffness a micrometre of stretch is many knot weights (the soft stage's rope, 20
-// times the load per held knot, is soft enough for straight steps, and its strains of a few per
-// cent are beyond a second-order path). Where the net has to move far
-// with almost no change in its bars' lengths (the free edge of a net hanging in vertical strands
-// that swing and twist), straight steps are therefore cut to a fraction of a millimetre and the
-// run creeps. The path tried is x + a p + a^2 / 2 c instead, c the correction that undoes that
-// stretch to second order (the geodesic acceleration of Levenberg-Marquardt methods), solved with
-// the step's factor. A full step along it whose energy decrease is more than kExpandDecrease of
-// the slope (the quadratic model predicts half) is tried at twice, four times ... the length, up
-// to kMaxExpansion, while the energy keeps falling.
+// A stage whose softest bar's EA is at least kBendAxialToLoad times the mean load per held knot
+// bends its steps: a step that turns bars moves their ends along straight lines, which stretches
+// each such bar by |turn|^2 / 2l, and for so stiff a rope a micrometre of stretch is many knot
+// weights. Where the net has to move far with almost no change in its bars' lengths (the free
+// edge of a net hanging in vertical strands that swing and twist), straight steps are therefore
+// cut to a fraction of a millimetre and the run creeps. The path tried is x + a p + a^2 / 2 c
+// instead, c the correction that undoes that stretch to second order (the geodesic acceleration
+// of Levenberg-Marquardt methods), solved with the step's factor. A full step along it whose
+// energy decrease is more than kExpandDecrease of the slope (the quadratic model predicts half)
+// is tried at twice, four times ... the length, up to kMaxExpansion, while the energy keeps
+// falling. Softer stages (the soft one, at kSoftLoadFactor; the studio's preview rope, a few
+// hundred) take straight steps: bent ones cost them iterations. A hinted start bends every
+// iteration after its first (the edit's tangent predictor).
+constexpr double kBendAxialToLoad = 1000;
 constexpr double kExpandDecrease = 0.75;
 constexpr double kMaxExpansion = 4096;
 // After the exact Hessian was found indefinite, the projected one is used for this many
@@ -126,7 +128,7 @@ struct Stage {
     double tolerance;
     bool mixed;
     double blend; ///< compression stiffness max(k_c, blend k_s)
-    bool bent;    ///< its steps are bent (every stage but a cold start's soft one)
+    bool bent;    ///< its steps are bent (kBendAxialToLoad)
 };
 
 /// One relaxation: the Newton iteration and its bookkeeping.
@@ -161,8 +163,9 @@ class NewtonRun {
     void takeStep(double alpha, bool mixed);
     void hintedStart(double tolerance);
     bool isWarm() const;
-    double softStageScale() const;
-    std::vector<Stage> planStages(double softScale, bool warm) const;
+    double axialToLoad() const;
+    double softStageScale(double axialToLoad) const;
+    std::vector<Stage> planStages(double softScale, bool warm, double axialToLoad) const;
     void runStage(const Stage& stage, bool lastStage, bool slack);
     bool assembleAndFactorize(bool mixed, int& exactPause);
     double searchLine(bool mixed, double slope, double best, bool& accepted, double& fullChange);
