@@ -177,7 +177,10 @@ void NewtonRun::runStage(const Stage& stage, bool lastStage, bool slack) {
         residual_ = evaluate(x_);
         if (lastStage)
             keepIfBest();
-        if (alpha >= 1.0)
+        // A full step lowers the shift when its model was good: mixed or windy (no energy
+        // measured), or the energy fell by at least kShiftDownRatio of the model's half slope.
+        const bool goodModel = mixed || windy_ || -fullChange >= kShiftDownRatio * 0.5 * slope;
+        if (alpha >= 1.0 && goodModel)
             shift_ = std::max(shift_ * 0.1, minShift);
         if (!mixed && !windy_ && slack)
             adaptDamping(alpha, slope, fullChange);
