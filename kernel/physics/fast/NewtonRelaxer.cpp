@@ -114,12 +114,14 @@ std::vector<Stage> NewtonRun::planStages(double softScale, bool warm, double axi
     const auto bent = [&](double scale) { return scale * axialToLoad >= kBendAxialToLoad; };
     std::vector<Stage> stages;
     if (softScale < 1.0) {
-        stages.push_back({softScale, std::max(kSoftTolerance, tolerance), false, 0.0, bent(softScale)});
+        const double softTolerance = std::max(kSoftTolerance, tolerance);
+        stages.push_back({softScale, softTolerance, false, 0.0, bent(softScale)});
         for (double s = softScale * kStageFactor; s < 1 / std::sqrt(kStageFactor); s *= kStageFactor)
-            stages.push_back({s, std::max(kSoftTolerance, tolerance), false, 0.0, bent(s)});
+            stages.push_back({s, softTolerance, false, 0.0, bent(s)});
         for (double blend : kFinalBlends)
             if (blend > 0)
-                stages.push_back({1.0, std::max(kBlendTolerance, tolerance), true, blend, bent(1.0)});
+                stages.push_back(
+                    {1.0, std::max(kBlendTolerance, tolerance), true, blend, bent(1.0)});
     }
     stages.push_back({1.0, tolerance, warm || softScale < 1.0, 0.0, bent(1.0)});
     return stages;
@@ -217,10 +219,11 @@ bool NewtonRun::assembleAndFactorize(bool mixed, int& exactPause) {
     return ok;
 }
 
-/// The step length along the step's path (displacement()): mixed, the first halving whose residual stays below
-/// kMixedGrowth times the stage's best; with wind, Armijo on the residual's merit; else Armijo
-/// on the energy with safeguarded quadratic interpolation (fullChange: the full step's energy
-/// change). accepted: false when no length passed (the energy way also when slope <= 0).
+/// The step length along the step's path (displacement()): mixed, the first halving whose
+/// residual stays below kMixedGrowth times the stage's best; with wind, Armijo on the residual's
+/// merit; else Armijo on the energy with safeguarded quadratic interpolation (fullChange: the
+/// full step's energy change), then expandStep when the step is bent. accepted: false when no
+/// length passed (the energy way also when slope <= 0).
 double NewtonRun::searchLine(bool mixed, double slope, double best, bool& accepted,
                              double& fullChange) {
     double alpha = 1;

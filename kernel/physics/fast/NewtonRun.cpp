@@ -11,7 +11,8 @@ NewtonRun::NewtonRun(MassSpringSystem& system, const RelaxOptions& options,
                      Clock::time_point start)
     : system_(system), options_(options), analysis_(analysis), stats_(statistics), start_(start),
       field_(analysis.field), x_(analysis.x), trial_(analysis.trial), force_(analysis.force),
-      step_(analysis.step), bend_(analysis.bend), tension_(analysis.tension), kCompression_(analysis.kCompression),
+      step_(analysis.step), bend_(analysis.bend), tension_(analysis.tension),
+      kCompression_(analysis.kCompression),
       barBlock_(analysis.barBlock), values_(analysis.values), rhs_(analysis.rhs),
       barTerm_(analysis.barTerm), weightOf_(analysis.weightOf),
       dampingUnit_(analysis.dampingUnit), bestX_(analysis.bestX) {
@@ -204,7 +205,8 @@ void NewtonRun::bendStep() {
             const std::uint32_t j = analysis_.freeKnots[f];
             Vec3 sum{};
             for (std::uint32_t b : field_.barsOfKnot(j)) {
-                const std::uint32_t other = system_.barA[b] == j ? system_.barB[b] : system_.barA[b];
+                const std::uint32_t other =
+                    system_.barA[b] == j ? system_.barB[b] : system_.barA[b];
                 sum += (x_[other] - x_[j]) * barTerm_[b]; // -k r_b grad_j l_b
             }
             rhs_[3 * f] = sum.x;
