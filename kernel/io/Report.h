@@ -5,13 +5,14 @@
 // Keys (lengths m, masses kg, forces N, vectors {x, y, z}):
 //   relaxed (a relaxation converged since the last change), residual (max |F_j| / (m_j |g|) over
 //   free knots now), relax {converged, residual, steps, seconds, backend, stop_reason} of the last
-//   relaxation run on the document since it was opened (null when none was: a shape read
-//   from a snapshot keeps only whether it was relaxed), knots, bars (distinct, whole
-//   sculpture), total_mass, total_weight, rope_length, max_tension, max_tension_at {bar, piece,
-//   a {row, column}, b {row, column}} (null without bars), slack_bars (bars shorter than their
-//   rest length by more than 1e-9 relative: in compression), force_balance {reaction_sum, expected (= -total mass x gravity), difference,
-//   relative_difference (|difference| / total_weight), tolerance, within_tolerance, relaxed,
-//   note}. Without a converged relaxation the balance is not expected to hold.
+//   relaxation run on the document since it was opened (null when none was: a shape read from a
+//   snapshot keeps only whether it was relaxed), knots, bars (distinct, whole sculpture),
+//   total_mass, total_weight, rope_length, max_tension, max_tension_at {bar, piece, a {row,
+//   column}, b {row, column}} (null without bars), slack_bars (bars shorter than their rest length
+//   by more than 1e-9 relative: in compression), force_balance {reaction_sum, expected (= -total
+//   mass x gravity), difference, relative_difference (|difference| / total_weight), tolerance,
+//   within_tolerance, relaxed, note}. Without a converged relaxation the balance is not expected to
+//   hold.
 //   pieces[]: id, name, rows, columns, closed, knots (rows x columns: its own grid, shared
 //   knots counted in every piece holding them), bars (the bars the piece owns), rope_length
 //   (sum of their rest lengths), mass (its bars' rope + the knot mass of the knots it owns: a
