@@ -64,6 +64,24 @@ MassSpringSystem sheetBetweenParallelRails(int rows, int columns, const Material
     return compiledWith(s, sheet, material);
 }
 
+MassSpringSystem bannerOnWavyRail(int rows, int columns, const Material& material) {
+    CurveSpec wave;
+    wave.spline = true;
+    wave.degree = 3;
+    wave.points = {{0, 0, 12.5}, {1, 0.8, 13.0}, {2, 0, 12.5}, {3, 0.8, 13.0}, {4, 0, 12.5}};
+    Sculpture s;
+    const RailId rail = addRail(s, "wave", wave);
+    AttachToRailArgs args;
+    args.rail = rail;
+    args.columns = columns;
+    args.rows = rows;
+    args.bar = 0.12;
+    const PieceId banner = attachToRail(s, args);
+    setBarLengthByRow(s, banner, 0, 0.1);
+    setBarLengthByRow(s, banner, rows - 1, 0.14);
+    return compiledWith(s, banner, material);
+}
+
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

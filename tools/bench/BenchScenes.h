@@ -25,6 +25,12 @@ MassSpringSystem tubeOnCircularRail(int rows, int columns, const Material& mater
 /// sheet hangs slack between the two (Fig. 11's kind of join).
 MassSpringSystem sheetBetweenParallelRails(int rows, int columns, const Material& material);
 
+/// The installation's banner, smaller: rows x columns hanging from an open, wavy B-spline rail
+/// about 5 m long (control points (0, 0, 12.5), (1, 0.8, 13), (2, 0, 12.5), (3, 0.8, 13),
+/// (4, 0, 12.5)), free at its sides and bottom, its bars 0.1 m at the top row and 0.14 m at the
+/// last. Its free edges collapse into vertical strands of knots that swing and twist.
+MassSpringSystem bannerOnWavyRail(int rows, int columns, const Material& material);
+
 /// Wall seconds since `start`.
 double secondsSince(std::chrono::steady_clock::time_point start);
 

@@ -6,6 +6,8 @@
 //   tube-100x200    100 x 200 (20k knots), target < 0.5 s
 //   slack-100x200   a sheet on an open rail whose last row is connected to a second, parallel
 //                   rail nearer than the sheet's height (it starts slack), target < 0.5 s
+//   banner-RxC      (only when asked for, e.g. --scene banner-90x51) the installation's banner,
+//                   R rows x C columns (BenchScenes.h), target < 5 s as for the installation
 // For each: wall seconds, Newton iterations (soft stage + final), factorizations, residual,
 // then the RK4 path under a time cap (residual reached) and the ratio of their times. Then the
 // force pass (Eq. 3) at 20k and 100k knots: ns per bar with 1 and 2 threads, against the memory
@@ -40,18 +42,37 @@ using bench::secondsSince;
 
 namespace {
 
+enum class Shape { Tube, Slack, Banner };
+
 struct Scene {
     std::string name;
-    bool slack;
+    Shape shape;
     int rows, columns;
     double targetSeconds;
 };
 
 /// The net through the model's edits (BenchScenes.h); it starts at the Eq. 2 geometry.
 MassSpringSystem build(const Scene& scene) {
-    return scene.slack
-               ? bench::sheetBetweenParallelRails(scene.rows, scene.columns, bench::realisticRope())
-               : bench::tubeOnCircularRail(scene.rows, scene.columns, bench::realisticRope());
+    const Material rope = bench::realisticRope();
+    switch (scene.shape) {
+    case Shape::Slack:
+        return bench::sheetBetweenParallelRails(scene.rows, scene.columns, rope);
+    case Shape::Banner:
+        return bench::bannerOnWavyRail(scene.rows, scene.columns, rope);
+    case Shape::Tube:
+        break;
+    }
+    return bench::tubeOnCircularRail(scene.rows, scene.columns, rope);
+}
+
+/// "banner-RxC" as a scene, R and C from 2 to 1000; nothing for any other name.
+std::vector<Scene> bannerScene(const std::string& name) {
+    int rows = 0, columns = 0;
+    char end = 0;
+    if (std::sscanf(name.c_str(), "banner-%dx%d%c", &rows, &columns, &end) != 2 || rows < 2 ||
+        columns < 2 || rows > 1000 || columns > 1000)
+        return {};
+    return {{name, Shape::Banner, rows, columns, 5.0}};
 }
 
 std::size_t compressedBars(const MassSpringSystem& system) {
@@ -172,7 +193,7 @@ PassTimes timePasses(const MassSpringSystem& system, ThreadPool* pool, double se
 void forcePass(bool quick) {
     std::vector<MassSpringSystem> nets;
     for (int columns : quick ? std::vector<int>{200} : std::vector<int>{200, 1000})
-        nets.push_back(build(Scene{"force pass", false, 100, columns, 0}));
+        nets.push_back(build(Scene{"force pass", Shape::Tube, 100, columns, 0}));
     std::printf("\n== force pass (Eq. 3): ns per bar, best and median pass over %.1f s; floor = "
                 "52 bytes per bar at the streaming read bandwidth with as many threads\n",
                 quick ? 0.2 : 1.0);
@@ -221,13 +242,17 @@ int main(int argc, char** argv) {
             return 2;
         }
     }
-    std::vector<Scene> scenes;
-    if (quick)
-        scenes = {{"tube-20x40", false, 20, 40, 0.05}, {"slack-20x40", true, 20, 40, 0.05}};
-    else
-        scenes = {{"tube-100x200", false, 100, 200, 0.5},
-                  {"slack-100x200", true, 100, 200, 0.5},
-                  {"tube-100x1000", false, 100, 1000, 5.0}};
+    std::vector<Scene> scenes = bannerScene(only);
+    if (!scenes.empty()) {
+        // a banner asked for by its size runs alone
+    } else if (quick) {
+        scenes = {{"tube-20x40", Shape::Tube, 20, 40, 0.05},
+                  {"slack-20x40", Shape::Slack, 20, 40, 0.05}};
+    } else {
+        scenes = {{"tube-100x200", Shape::Tube, 100, 200, 0.5},
+                  {"slack-100x200", Shape::Slack, 100, 200, 0.5},
+                  {"tube-100x1000", Shape::Tube, 100, 1000, 5.0}};
+    }
     if (rk4Cap < 0)
         rk4Cap = quick ? 2.0 : 60.0;
     std::printf("netsculpt-bench-fast: rope EA 2e5 N, tolerance 1e-6, threads %s, %u hardware "
