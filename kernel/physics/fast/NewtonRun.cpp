@@ -91,8 +91,7 @@ void NewtonRun::elasticTensions() {
         for (std::size_t b = begin; b < end; ++b) {
             const double l = distance(x_[system_.barA[b]], x_[system_.barB[b]]);
             const double extension = l - system_.restLength[b];
-            tension_[b] = (extension > 0 ? system_.kTension[b] : kCompression_[b]) *
-                          scale_ * extension;
+            tension_[b] = stiffness(b, extension) * extension;
         }
     });
 }
@@ -107,19 +106,14 @@ void NewtonRun::assemble(bool mixed, bool exact) {
             const Vec3 d = x_[system_.barB[b]] - x_[system_.barA[b]];
             const double l = d.norm();
             const double extension = l - system_.restLength[b];
-            const double k =
-                (extension > 0 ? system_.kTension[b] : kCompression_[b]) *
-                scale_;
+            const double k = stiffness(b, extension);
             double* h = &barBlock_[9 * b];
             if (!(l > 0)) { // no direction: isotropic, keeps the matrix definite
                 for (int i = 0; i < 9; ++i)
                     h[i] = i % 4 == 0 ? k : 0.0;
                 continue;
             }
-            const double t =
-                mixed ? tension_[b]
-                      : (extension > 0 ? system_.kTension[b] : kCompression_[b]) * scale_ *
-                            extension;
+            const double t = mixed ? tension_[b] : k * extension;
             const double q = (exact ? t : std::max(t, 0.0)) / l;
             const double u[3] = {d.x / l, d.y / l, d.z / l};
             for (int i = 0; i < 3; ++i)
@@ -169,7 +163,6 @@ bool NewtonRun::factorize() {
 
 /// step_ = (H + mu I)^-1 F at the free knots (zero at fixed ones).
 void NewtonRun::solve() {
-    const auto t0 = Clock::now();
     const std::size_t freeCount = analysis_.freeKnots.size();
     for (std::size_t f = 0; f < freeCount; ++f) {
         const Vec3& F = force_[analysis_.freeKnots[f]];
@@ -177,9 +170,15 @@ void NewtonRun::solve() {
         rhs_[3 * f + 1] = F.y;
         rhs_[3 * f + 2] = F.z;
     }
+    solveInto(step_);
+}
+
+/// out = (H + mu I)^-1 rhs_ at the free knots, with the current factor.
+void NewtonRun::solveInto(std::vector<Vec3>& out) {
+    const auto t0 = Clock::now();
     analysis_.cholesky.solve(rhs_, pool_.get());
-    for (std::size_t f = 0; f < freeCount; ++f)
-        step_[analysis_.freeKnots[f]] = Vec3{rhs_[3 * f], rhs_[3 * f + 1], rhs_[3 * f + 2]};
+    for (std::size_t f = 0; f < analysis_.freeKnots.size(); ++f)
+        out[analysis_.freeKnots[f]] = Vec3{rhs_[3 * f], rhs_[3 * f + 1], rhs_[3 * f + 2]};
     stats_.solveSeconds += secondsSince(t0);
 }
 
@@ -191,11 +190,11 @@ void NewtonRun::bendStep() {
     forRange(system_.barCount(), [&](std::size_t begin, std::size_t end, std::size_t) {
         for (std::size_t b = begin; b < end; ++b) {
             const std::uint32_t a = system_.barA[b], e = system_.barB[b];
-            const double l = distance(x_[a], x_[e]);
+            const Vec3 d = x_[e] - x_[a];
+            const double l = d.norm();
             const Vec3 dp = step_[e] - step_[a];
-            const double along = l > 0 ? (x_[e] - x_[a]).dot(dp) / l : 0.0;
-            const double k = (l > system_.restLength[b] ? system_.kTension[b] : kCompression_[b]) *
-                             scale_;
+            const double along = l > 0 ? d.dot(dp) / l : 0.0;
+            const double k = stiffness(b, l - system_.restLength[b]);
             barTerm_[b] = l > 0 ? k * (dp.dot(dp) - along * along) / (l * l) : 0.0; // k r_b / l
         }
     });
@@ -214,11 +213,7 @@ void NewtonRun::bendStep() {
             rhs_[3 * f + 2] = sum.z;
         }
     });
-    const auto t0 = Clock::now();
-    analysis_.cholesky.solve(rhs_, pool_.get());
-    stats_.solveSeconds += secondsSince(t0);
-    for (std::size_t f = 0; f < freeCount; ++f)
-        bend_[analysis_.freeKnots[f]] = Vec3{rhs_[3 * f], rhs_[3 * f + 1], rhs_[3 * f + 2]};
+    solveInto(bend_);
 }
 
 /// E(x + alpha step) - E(x) at the current scale, bar by bar in a form exact to the relative
@@ -231,8 +226,8 @@ double NewtonRun::energyChange(double alpha) {
             const Vec3 change = displacement(e, alpha) - displacement(a, alpha);
             const Vec3 moved = d + change;
             const double l = d.norm(), lNew = moved.norm(), rest = system_.restLength[b];
-            const double k = (l > rest ? system_.kTension[b] : kCompression_[b]) * scale_;
-            const double kNew = (lNew > rest ? system_.kTension[b] : kCompression_[b]) * scale_;
+            const double k = stiffness(b, l - rest);
+            const double kNew = stiffness(b, lNew - rest);
             if (k == kNew && l + lNew > 0) {
                 // l' - l = (d' + d) . (d' - d) / (l' + l), without cancellation.
                 const double dl = change.dot(d * 2.0 + change) / (l + lNew);
@@ -275,8 +270,7 @@ void NewtonRun::takeStep(double alpha, bool mixed) {
                     continue;
                 const double linear = l + d.dot(step_[e] - step_[a]) * (alpha / l);
                 const double extension = linear - system_.restLength[b];
-                tension_[b] = (extension > 0 ? system_.kTension[b] : kCompression_[b]) *
-                              scale_ * extension;
+                tension_[b] = stiffness(b, extension) * extension;
             }
         });
     for (std::uint32_t j : analysis_.freeKnots)
@@ -333,15 +327,9 @@ void NewtonRun::hintedStart(double tolerance) {
         bent_ = steps_ - first > 1;
         if (bent_)
             bendStep();
-        double alpha = 1;
         bool accepted = false;
-        for (int k = 0; k < kMaxBacktracks && !accepted; ++k, alpha *= 0.5) {
-            for (std::uint32_t j : analysis_.freeKnots)
-                trial_[j] = x_[j] + displacement(j, alpha);
-            accepted = evaluate(trial_) < kMixedGrowth * best;
-            if (accepted)
-                break;
-        }
+        double fullChange = 0; // (not measured in a mixed search)
+        const double alpha = searchLine(true, 0.0, best, accepted, fullChange);
         if (!accepted) {
             shift_ = std::max(shift_ * 10, kFailShift);
             residual_ = evaluate(x_);

@@ -159,7 +159,12 @@ class NewtonRun {
     void assemble(bool mixed, bool exact);
     bool factorize();
     void solve();
+    void solveInto(std::vector<Vec3>& out);
     void bendStep();
+    /// Bar b's stiffness at the current scale and compression law for `extension` (l - l_eq).
+    double stiffness(std::size_t b, double extension) const {
+        return (extension > 0 ? system_.kTension[b] : kCompression_[b]) * scale_;
+    }
     Vec3 displacement(std::size_t j, double alpha) const {
         return bent_ ? step_[j] * alpha + bend_[j] * (0.5 * alpha * alpha) : step_[j] * alpha;
     }
