@@ -242,17 +242,14 @@ int main(int argc, char** argv) {
             return 2;
         }
     }
+    // A banner asked for by its size runs alone.
     std::vector<Scene> scenes = bannerScene(only);
-    if (!scenes.empty()) {
-        // a banner asked for by its size runs alone
-    } else if (quick) {
-        scenes = {{"tube-20x40", Shape::Tube, 20, 40, 0.05},
-                  {"slack-20x40", Shape::Slack, 20, 40, 0.05}};
-    } else {
-        scenes = {{"tube-100x200", Shape::Tube, 100, 200, 0.5},
-                  {"slack-100x200", Shape::Slack, 100, 200, 0.5},
-                  {"tube-100x1000", Shape::Tube, 100, 1000, 5.0}};
-    }
+    if (scenes.empty())
+        scenes = quick ? std::vector<Scene>{{"tube-20x40", Shape::Tube, 20, 40, 0.05},
+                                            {"slack-20x40", Shape::Slack, 20, 40, 0.05}}
+                       : std::vector<Scene>{{"tube-100x200", Shape::Tube, 100, 200, 0.5},
+                                            {"slack-100x200", Shape::Slack, 100, 200, 0.5},
+                                            {"tube-100x1000", Shape::Tube, 100, 1000, 5.0}};
     if (rk4Cap < 0)
         rk4Cap = quick ? 2.0 : 60.0;
     std::printf("netsculpt-bench-fast: rope EA 2e5 N, tolerance 1e-6, threads %s, %u hardware "
