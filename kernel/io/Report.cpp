@@ -29,6 +29,16 @@ KnotRef refOf(const MassSpringSystem& sys, std::uint32_t k, PieceId piece) {
     return sys.refs[sys.refStart[k]];
 }
 
+/// Where bar b is: its index, its piece and its two knots' (row, column) in that piece.
+json barAt(const MassSpringSystem& sys, std::size_t b) {
+    const PieceId piece = sys.barPiece[b];
+    const KnotRef a = refOf(sys, sys.barA[b], piece), e = refOf(sys, sys.barB[b], piece);
+    return {{"bar", b},
+            {"piece", piece.value},
+            {"a", {{"row", a.row}, {"column", a.column}}},
+            {"b", {{"row", e.row}, {"column", e.column}}}};
+}
+
 json railEdge(const Sculpture& s, const RailEdge& e) {
     return {{"kind", "rail"},      {"rail", e.rail.value}, {"rail_name", s.rail(e.rail).name},
             {"at", e.at},          {"step", e.step},       {"offset", e.offset},
@@ -127,27 +137,28 @@ nlohmann::json buildReport(const Sculpture& s, const CompiledSculpture& c,
     report["total_weight"] = weight;
     report["rope_length"] = rope;
 
-    std::size_t slack = 0, strongest = 0;
+    std::size_t slack = 0, strongest = 0, mostStretched = 0, overstretched = 0;
+    double maxStrain = 0;
     for (std::size_t b = 0; b < sys.barCount(); ++b) {
-        if (io::isSlack(distance(sys.position[sys.barA[b]], sys.position[sys.barB[b]]),
-                        sys.restLength[b]))
+        const double length = distance(sys.position[sys.barA[b]], sys.position[sys.barB[b]]);
+        if (io::isSlack(length, sys.restLength[b]))
             ++slack;
         if (tension[b] > tension[strongest])
             strongest = b;
+        const double strain = length / sys.restLength[b] - 1;
+        overstretched += strain > kOverstretchStrain ? 1 : 0;
+        if (strain > maxStrain) {
+            maxStrain = strain;
+            mostStretched = b;
+        }
     }
     report["slack_bars"] = slack;
     report["max_tension"] = sys.barCount() ? std::max(0.0, tension[strongest]) : 0.0;
-    if (sys.barCount()) {
-        const PieceId piece = sys.barPiece[strongest];
-        const KnotRef a = refOf(sys, sys.barA[strongest], piece),
-                      b = refOf(sys, sys.barB[strongest], piece);
-        report["max_tension_at"] = {{"bar", strongest},
-                                    {"piece", piece.value},
-                                    {"a", {{"row", a.row}, {"column", a.column}}},
-                                    {"b", {{"row", b.row}, {"column", b.column}}}};
-    } else {
-        report["max_tension_at"] = nullptr;
-    }
+    report["max_tension_at"] = sys.barCount() ? barAt(sys, strongest) : json(nullptr);
+    report["max_strain"] = maxStrain;
+    report["max_strain_at"] = maxStrain > 0 ? barAt(sys, mostStretched) : json(nullptr);
+    report["overstretched_bars"] = overstretched;
+    report["overstretch_limit"] = kOverstretchStrain;
 
     // At equilibrium the rails carry the whole weight: sum of reactions = -(total mass) g.
     Vec3 reactionSum;

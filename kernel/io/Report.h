@@ -9,7 +9,11 @@
 //   snapshot keeps only whether it was relaxed), knots, bars (distinct, whole sculpture),
 //   total_mass, total_weight, rope_length, max_tension, max_tension_at {bar, piece, a {row,
 //   column}, b {row, column}} (null without bars), slack_bars (bars shorter than their rest length
-//   by more than 1e-9 relative: in compression), force_balance {reaction_sum, expected (= -total
+//   by more than 1e-9 relative: in compression), max_strain (the largest (l - l_eq) / l_eq, 0
+//   when no bar is stretched), max_strain_at (as max_tension_at; null when no bar is stretched),
+//   overstretched_bars (bars stretched by more than overstretch_limit = kOverstretchStrain; in a
+//   relaxed shape, a design the rope cannot hang as computed, which the Markdown says; an Eq. 2
+//   start stretches open edges' bars by up to tens of per cent), force_balance {reaction_sum, expected (= -total
 //   mass x gravity), difference, relative_difference (|difference| / total_weight), tolerance,
 //   within_tolerance, relaxed, note}. Without a converged relaxation the balance is not expected to
 //   hold.
@@ -32,6 +36,13 @@
 #include <string>
 
 namespace netsculpt {
+
+/// A bar stretched by more than this share of its rest length is flagged by the report. The
+/// model's rope is linear elastic at any stretch; real net rope stretches a few per cent under a
+/// working load and yields or breaks well before 20 %, so a net pulled that far is one tied
+/// between rails farther apart than it reaches, and its tensions and rail loads are those of a
+/// rope that does not exist.
+inline constexpr double kOverstretchStrain = 0.02;
 
 /// How the shape being reported came about (what a Document knows).
 struct RelaxStatus {

@@ -51,6 +51,13 @@ std::string num(const json& v) {
                                  : io::numberText(v.get<double>());
 }
 
+/// "piece P, row R column C to row R' column C'" for a max_tension_at / max_strain_at entry.
+std::string barText(const json& at) {
+    return "piece " + num(at["piece"]) + ", row " + num(at["a"]["row"]) + " column " +
+           num(at["a"]["column"]) + " to row " + num(at["b"]["row"]) + " column " +
+           num(at["b"]["column"]);
+}
+
 std::string topText(const json& top) {
     if (top["kind"] == "rail")
         return "rail " + std::to_string(top["rail"].get<int>()) + " (" +
@@ -83,13 +90,19 @@ std::string reportMarkdown(const json& r) {
     md += "| total mass | " + g6(r["total_mass"]) + " kg |\n| total weight | " +
           g6(r["total_weight"]) + " N |\n";
     md += "| largest tension | " + g6(r["max_tension"]) + " N";
-    if (!r["max_tension_at"].is_null()) {
-        const json& at = r["max_tension_at"];
-        md += " (piece " + num(at["piece"]) + ", row " + num(at["a"]["row"]) + " column " +
-              num(at["a"]["column"]) + " to row " + num(at["b"]["row"]) + " column " +
-              num(at["b"]["column"]) + ")";
-    }
+    if (!r["max_tension_at"].is_null())
+        md += " (" + barText(r["max_tension_at"]) + ")";
+    md += " |\n| largest strain | " + g6(100 * r["max_strain"].get<double>()) + " %";
+    if (!r["max_strain_at"].is_null())
+        md += " (" + barText(r["max_strain_at"]) + ")";
     md += " |\n| slack bars | " + num(r["slack_bars"]) + " |\n\n";
+    if (r["relaxed"].get<bool>() && r["overstretched_bars"].get<std::size_t>() > 0)
+        md += "**Check the design:** " + num(r["overstretched_bars"]) +
+              " bars are stretched by more than " +
+              g6(100 * r["overstretch_limit"].get<double>()) +
+              " % of their length. Net rope stretches a few per cent under load and yields or "
+              "breaks before 20 %: the net is tied between rails farther apart than it reaches, "
+              "and the tensions and rail loads below are those of a rope that does not exist.\n\n";
 
     const json& fb = r["force_balance"];
     md += "## Force balance\n\nSum of the rail reactions " + vecText(fb["reaction_sum"]) +

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 using namespace netsculpt;
 using namespace netsculpt::test;
@@ -200,6 +201,45 @@ TEST_CASE("report as Markdown and CSV tables") {
     CHECK(points.rfind("rail,piece,row,column,t,fx,fy,fz,magnitude\n", 0) == 0);
     CHECK(lineCount(points) == 1 + 3);
     CHECK_THAT(points, Contains("\n1,1,0,2,1,"));
+}
+
+TEST_CASE("the report flags bars stretched beyond what rope does, with the largest strain") {
+    // 6 rows x 5 columns, bars of 0.3 m, knots placed by hand on the regular stagger: row r at
+    // x = 0.25 c (+ 0.125 on odd rows), z = -s v r with v = sqrt(0.3^2 - 0.125^2). Every bar joins
+    // neighbouring rows half a spacing apart, so every bar is sqrt(0.125^2 + s^2 v^2) long.
+    const double bar = 0.3, across = 0.125, down = std::sqrt(bar * bar - across * across);
+    const SheetNet t = sheet(6, 5, 1.0, bar);
+    const std::size_t bars = t.compiled.system.barCount();
+    RelaxStatus relaxed;
+    relaxed.relaxed = true; // the check speaks only of a shape that hangs
+
+    for (const double s : {1.0, 1.01, 1.1}) {
+        CAPTURE(s);
+        CompiledSculpture c = t.compiled;
+        for (int r = 0; r < 6; ++r)
+            for (int col = 0; col < 5; ++col)
+                c.system.position[c.knotOf(t.piece, r, col)] =
+                    Vec3{0.25 * col + (r % 2 ? across : 0.0), 0, -s * down * r};
+        const double strain = std::sqrt(across * across + s * s * down * down) / bar - 1;
+        const json r = buildReport(t.s, c, relaxed);
+        CHECK(r["max_strain"].get<double>() == Approx(strain).margin(1e-14));
+        const bool over = strain > kOverstretchStrain; // 0, 0.83 % and 8.3 %
+        CHECK(r["overstretched_bars"].get<std::size_t>() == (over ? bars : 0));
+        const std::string md = reportMarkdown(r);
+        const std::string warning =
+            "**Check the design:** " + std::to_string(bars) + " bars are stretched";
+        CHECK((md.find(warning) != std::string::npos) == over);
+        if (s > 1) {
+            CHECK(r["max_strain_at"]["piece"] == t.piece.value);
+            char percent[40];
+            std::snprintf(percent, sizeof percent, "%.6g", 100 * strain);
+            CHECK_THAT(md, Contains("| largest strain | " + std::string(percent) + " %"));
+        }
+        // Not relaxed (an Eq. 2 start or a shape still moving): counted, not called a design flaw.
+        const json moving = buildReport(t.s, c);
+        CHECK(moving["overstretched_bars"] == r["overstretched_bars"]);
+        CHECK(reportMarkdown(moving).find("**Check the design:**") == std::string::npos);
+    }
 }
 
 TEST_CASE("a Document's report and export say whether its shape is relaxed") {
