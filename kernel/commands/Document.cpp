@@ -5,6 +5,7 @@
 #include "model/Error.h"
 #include "physics/Backends.h"
 #include "physics/Forces.h"
+#include "physics/WarmStart.h"
 
 #include <algorithm>
 #include <fstream>
@@ -70,6 +71,10 @@ struct Document::State {
     bool warm = false;            ///< compiled positions come from a relaxation (carried on edits)
     bool relaxed = false;
     RelaxResult lastRelax;
+    /// The system (law and shape) the last time the shape was relaxed: after an edit, relax()
+    /// hands the fast path the tensions that shape had (physics/WarmStart.h), so that the parts
+    /// the edit did not touch keep their equilibrium instead of going through a soft stage.
+    std::optional<MassSpringSystem> relaxedSystem;
     /// The backend of the last relax(), kept so that it can reuse what it analysed (the fast
     /// path keeps its sparse ordering while the bars stay the same).
     std::unique_ptr<Relaxer> relaxer;
@@ -286,6 +291,7 @@ Document Document::load(const std::filesystem::path& file, std::vector<std::stri
         st.compiled.system.position = data.positions;
         st.warm = data.warm;
         st.relaxed = data.relaxed;
+        if (st.relaxed) st.relaxedSystem = st.compiled.system;
     } else if (!data.positions.empty()) {
         report({file.string() + ": the saved shape has " + std::to_string(data.positions.size()) +
                 " knots, the model " + std::to_string(st.compiled.system.knotCount()) +
@@ -351,6 +357,7 @@ void Document::adoptPositions(std::vector<Vec3> positions, bool converged) {
     st.compiled.system.position = std::move(positions);
     st.relaxed = converged;
     st.warm = true;
+    if (converged) st.relaxedSystem = st.compiled.system;
 }
 
 namespace {
@@ -361,7 +368,14 @@ std::string_view relaxerKey(std::string_view requested) { return requested == "a
 RelaxResult Document::relax(const DocumentRelaxOptions& options) {
     State& st = *state_;
     if (!st.relaxer || relaxerKey(options.backend) != st.relaxer->name()) st.relaxer = makeRelaxer(options.backend);
-    RelaxResult result = st.relaxer->relax(st.compiled.system, options.solver);
+    RelaxOptions solver = options.solver;
+    // An edit of a relaxed shape: the tensions it had before the edit (a predictor step).
+    const bool hinted = relaxerKey(options.backend) == "fast" && !st.relaxed && st.relaxedSystem &&
+                        solver.startTensions.empty();
+    const std::vector<double> hint =
+        hinted ? startTensions(*st.relaxedSystem, st.compiled.system) : std::vector<double>{};
+    if (!hint.empty()) solver.startTensions = hint;
+    RelaxResult result = st.relaxer->relax(st.compiled.system, solver);
     result.tolerance = options.solver.tolerance;
     const MassSpringSystem& system = st.compiled.system;
     if (const std::int64_t worst = result.converged ? -1 : knotWithLargestResidual(system, options.solver.wind);
@@ -370,6 +384,7 @@ RelaxResult Document::relax(const DocumentRelaxOptions& options) {
     st.lastRelax = result;
     st.relaxed = result.converged;
     st.warm = true;
+    if (result.converged) st.relaxedSystem = system;
     return result;
 }
 

@@ -30,7 +30,7 @@ RelaxResult NewtonRun::run() {
     bool warm = false;
     const double ratio = axialToLoad();
     if (!analysis_.freeKnots.empty() && !(residual_ < tolerance)) {
-        warm = isWarm();
+        warm = isWarm(stats_.hintIterations > 0);
         if (options_.continuation && !warm)
             softScale = softStageScale(ratio);
     }
@@ -72,8 +72,9 @@ RelaxResult NewtonRun::run() {
 }
 
 /// Whether the start is warm: at least kWarmTautShare of the bars stretched by more than
-/// kTautStrain, none by more than kWarmMaxStrain, and the residual at most kWarmMaxResidual.
-bool NewtonRun::isWarm() const {
+/// kTautStrain, none by more than kWarmMaxStrain, and, unless the start was hinted, the residual
+/// at most kWarmMaxResidual.
+bool NewtonRun::isWarm(bool hinted) const {
     const std::size_t bars = system_.barCount();
     std::size_t taut = 0;
     double maxStrain = 0;
@@ -84,7 +85,7 @@ bool NewtonRun::isWarm() const {
         maxStrain = std::max(maxStrain, strain);
     }
     return static_cast<double>(taut) >= kWarmTautShare * static_cast<double>(bars) &&
-           maxStrain <= kWarmMaxStrain && residual_ <= kWarmMaxResidual;
+           maxStrain <= kWarmMaxStrain && (hinted || residual_ <= kWarmMaxResidual);
 }
 
 /// The softest bar's EA over the mean load per held knot, at scale 1.

@@ -66,7 +66,10 @@ constexpr double kTautStrain = 1e-9;
 constexpr double kWarmMaxStrain = 0.05;
 // ... and the start's residual is below this: the forces are out of balance by at most a
 // hundred times the knots' weights (rows added below a relaxed net are not; their weight, not
-// yet carried, is a cold start in disguise).
+// yet carried, is a cold start in disguise). Not after a hinted start: the hint says the shape
+// is an edited equilibrium, whose load the bars away from the edit still carry, and a soft stage
+// would throw that equilibrium away everywhere (an edit of the installation's core that
+// slackens its bell: 70 iterations, 6 s, warm; not converged in 120 s through the stages).
 constexpr double kWarmMaxResidual = 100;
 // A start with a tension hint (RelaxOptions::startTensions) first gets at most this many mixed
 // Newton iterations seeded with the hint (see NewtonRun::hintedStart); a small edit needs two or
@@ -172,7 +175,7 @@ class NewtonRun {
     double meritOf(const std::vector<Vec3>& at);
     void takeStep(double alpha, bool mixed);
     void hintedStart(double tolerance);
-    bool isWarm() const;
+    bool isWarm(bool hinted) const;
     double axialToLoad() const;
     double softStageScale(double axialToLoad) const;
     std::vector<Stage> planStages(double softScale, bool warm, double axialToLoad) const;

@@ -1,0 +1,31 @@
+#pragma once
+// Carrying a relaxed shape across an edit: where new rows start, and the tensions the shape had
+// before the edit, which the fast path turns into a predictor step (RelaxOptions::startTensions).
+// Used by the studio's live preview (interaction/LiveRelaxer.h) and by Document::relax after an
+// edit of a relaxed sculpture. Knots are matched by their first (piece, row, column).
+
+#include "physics/MassSpringSystem.h"
+
+#include <cstddef>
+#include <vector>
+
+namespace netsculpt {
+
+/// Knots of `next` that `previous` did not have, in rows added below a piece whose column count
+/// is unchanged, placed where the rows above them lead: p(r, c) = p(r-1, c) + p(r-2, c) -
+/// p(r-3, c) (rows alternate their half-column shift, so the step two rows up has the new row's).
+/// A hung net is narrower and more stretched at the bottom than the Eq. 2 geometry that the
+/// document's warm start offsets new rows by, which starts their bars up to tens of per cent
+/// from their length; after this they start near the strain of the rows above. Knots matched by
+/// their first (piece, row, column). Returns how many were placed.
+std::size_t continueNewRows(const MassSpringSystem& previous, MassSpringSystem& next);
+/// The warm-start hint for relaxing `next` after `previous` (RelaxOptions::startTensions): for
+/// every bar of `next` that joins the same two (piece, row, column) knots as a bar of
+/// `previous`, that bar's tension under `previous`'s rest length and stiffness at `next`'s
+/// positions (N): the tension the shape had before the edit. A bar new in `next` takes the mean
+/// positive hint of the bars at its knots (new rows carry load like the row above; rows further
+/// down take the hints of the new rows above them), or its own elastic tension when none has one. Empty (no hint) when fewer than half of `next`'s bars
+/// existed in `previous`.
+std::vector<double> startTensions(const MassSpringSystem& previous, const MassSpringSystem& next);
+
+} // namespace netsculpt
