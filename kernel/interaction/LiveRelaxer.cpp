@@ -206,6 +206,15 @@ bool LiveRelaxer::extrapolate(const MassSpringSystem& previous, MassSpringSystem
     return true;
 }
 
+std::vector<double> LiveRelaxer::refinedStart(MassSpringSystem& system) const {
+    MassSpringSystem start = system;
+    carryMatchedPositions(*refined_, start);
+    continueNewRows(*refined_, start);
+    std::vector<double> hint = startTensions(*refined_, start);
+    if (!hint.empty()) system.position = std::move(start.position);
+    return hint;
+}
+
 void LiveRelaxer::runJob(Job& job) {
     const auto start = Clock::now();
     auto seconds = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
@@ -320,6 +329,11 @@ void LiveRelaxer::runJob(Job& job) {
         };
         previous_.reset();
         lastStep_.reset();
+        // After an edit of a refined shape: that shape, carried across the edit, with the tensions
+        // it had (the preview's soft shape can be far from the material's where the net is slack):
+        // most edits then take a few Newton iterations instead of the whole continuation.
+        const std::vector<double> hint = refined_ ? refinedStart(job.system) : std::vector<double>{};
+        o.startTensions = hint;
         const RelaxResult r = relaxer_->relax(job.system, o);
         state.steps = r.steps;
         state.residual = r.residual;
@@ -329,10 +343,12 @@ void LiveRelaxer::runJob(Job& job) {
         } else {
             state.converged = r.converged;
             finish(r.stopReason, job.system.position);
+            if (r.converged) refined_ = job.system;
         }
         previous_ = std::move(job.system);
     } catch (const UserError& e) {
         previous_.reset();
+        refined_.reset();
         state.error = e.what();
         finish("error", job.system.position);
     }

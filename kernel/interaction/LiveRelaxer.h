@@ -129,6 +129,12 @@ class LiveRelaxer {
     /// for a refine) with the positions it ended at, whose law gives the next preview's tension
     /// hint (startTensions below). Empty before the first run and after an error.
     std::optional<MassSpringSystem> previous_;
+    /// Worker thread only: the system of the last refine that converged, at its equilibrium.
+    std::optional<MassSpringSystem> refined_;
+    /// A refine's start after an edit of the refined shape: `system`'s positions become that
+    /// shape carried across the edit (new rows where the rows above lead), and the hint returned
+    /// is the tensions it had; empty (and `system` unchanged) when too few bars match.
+    std::vector<double> refinedStart(MassSpringSystem& system) const;
     /// Worker thread only: what the last preview did when it converged after a rest-length edit
     /// of the shape before it: each knot's displacement, m, and each bar's rest-length change, m.
     /// The next edit that repeats it (a multiple of the same change, the next step of a drag)

@@ -32,6 +32,25 @@ std::uint64_t pairKey(std::uint32_t a, std::uint32_t b) {
 
 } // namespace
 
+std::size_t carryMatchedPositions(const MassSpringSystem& previous, MassSpringSystem& next) {
+    std::unordered_map<std::uint64_t, std::uint32_t> oldKnot;
+    oldKnot.reserve(previous.knotCount());
+    for (std::size_t j = 0; j < previous.knotCount(); ++j) {
+        std::uint64_t key = 0;
+        if (knotKey(previous, j, key)) oldKnot.emplace(key, static_cast<std::uint32_t>(j));
+    }
+    std::size_t carried = 0;
+    for (std::size_t j = 0; j < next.knotCount(); ++j) {
+        std::uint64_t key = 0;
+        if (next.fixed[j] || !knotKey(next, j, key)) continue;
+        const auto at = oldKnot.find(key);
+        if (at == oldKnot.end()) continue;
+        next.position[j] = previous.position[at->second];
+        ++carried;
+    }
+    return carried;
+}
+
 std::size_t continueNewRows(const MassSpringSystem& previous, MassSpringSystem& next) {
     // The same knots (a drag that keeps the topology): none is new.
     if (previous.refStart == next.refStart && previous.refs == next.refs) return 0;

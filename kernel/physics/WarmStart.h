@@ -18,6 +18,10 @@ namespace netsculpt {
 /// document's warm start offsets new rows by, which starts their bars up to tens of per cent
 /// from their length; after this they start near the strain of the rows above. Knots matched by
 /// their first (piece, row, column). Returns how many were placed.
+/// Free knots of `next` that `previous` also had take `previous`'s positions: a shape relaxed
+/// under an older law, carried across the edits since (the studio's refine starts from its last
+/// refined shape, not from the soft preview's). Returns how many were carried.
+std::size_t carryMatchedPositions(const MassSpringSystem& previous, MassSpringSystem& next);
 std::size_t continueNewRows(const MassSpringSystem& previous, MassSpringSystem& next);
 /// The warm-start hint for relaxing `next` after `previous` (RelaxOptions::startTensions): for
 /// every bar of `next` that joins the same two (piece, row, column) knots as a bar of
