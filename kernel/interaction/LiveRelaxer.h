@@ -135,6 +135,10 @@ class LiveRelaxer {
     /// shape carried across the edit (new rows where the rows above lead), and the hint returned
     /// is the tensions it had; empty (and `system` unchanged) when too few bars match.
     std::vector<double> refinedStart(MassSpringSystem& system) const;
+    /// A refine of `system` (its positions: the preview's shape), after an edit of a refined shape
+    /// tried from that shape first (kRefinedStartSteps in LiveRelaxer.cpp); the result of the run
+    /// whose positions `system` ends with, the steps of both.
+    RelaxResult refineRun(MassSpringSystem& system, const RelaxOptions& options);
     /// Worker thread only: what the last preview did when it converged after a rest-length edit
     /// of the shape before it: each knot's displacement, m, and each bar's rest-length change, m.
     /// The next edit that repeats it (a multiple of the same change, the next step of a drag)
