@@ -10,13 +10,15 @@ namespace {
 
 /// A knot's first (piece, row, column) as one number; false when it does not fit 24/20/20 bits.
 bool knotKey(const MassSpringSystem& system, std::size_t knot, std::uint64_t& key) {
-    if (system.refStart.size() != system.knotCount() + 1 || system.refStart[knot] == system.refStart[knot + 1])
+    if (system.refStart.size() != system.knotCount() + 1 ||
+        system.refStart[knot] == system.refStart[knot + 1])
         return false;
     const KnotRef& ref = system.refs[system.refStart[knot]];
     if (ref.piece.value >= (1u << 24) || ref.row < 0 || ref.row >= (1 << 20) || ref.column < 0 ||
         ref.column >= (1 << 20))
         return false;
-    key = std::uint64_t{ref.piece.value} << 40 | std::uint64_t(ref.row) << 20 | std::uint64_t(ref.column);
+    key = std::uint64_t{ref.piece.value} << 40 | std::uint64_t(ref.row) << 20 |
+          std::uint64_t(ref.column);
     return true;
 }
 
@@ -37,14 +39,17 @@ std::size_t carryMatchedPositions(const MassSpringSystem& previous, MassSpringSy
     oldKnot.reserve(previous.knotCount());
     for (std::size_t j = 0; j < previous.knotCount(); ++j) {
         std::uint64_t key = 0;
-        if (knotKey(previous, j, key)) oldKnot.emplace(key, static_cast<std::uint32_t>(j));
+        if (knotKey(previous, j, key))
+            oldKnot.emplace(key, static_cast<std::uint32_t>(j));
     }
     std::size_t carried = 0;
     for (std::size_t j = 0; j < next.knotCount(); ++j) {
         std::uint64_t key = 0;
-        if (next.fixed[j] || !knotKey(next, j, key)) continue;
+        if (next.fixed[j] || !knotKey(next, j, key))
+            continue;
         const auto at = oldKnot.find(key);
-        if (at == oldKnot.end()) continue;
+        if (at == oldKnot.end())
+            continue;
         next.position[j] = previous.position[at->second];
         ++carried;
     }
@@ -53,24 +58,28 @@ std::size_t carryMatchedPositions(const MassSpringSystem& previous, MassSpringSy
 
 std::size_t continueNewRows(const MassSpringSystem& previous, MassSpringSystem& next) {
     // The same knots (a drag that keeps the topology): none is new.
-    if (previous.refStart == next.refStart && previous.refs == next.refs) return 0;
+    if (previous.refStart == next.refStart && previous.refs == next.refs)
+        return 0;
     // Columns per piece (the largest column + 1) in both systems: only a piece whose column count
     // is the same has rows to go on from.
     auto columnsOf = [](const MassSpringSystem& system) {
         std::unordered_map<std::uint32_t, int> columns;
-        for (const KnotRef& ref : system.refs) columns[ref.piece.value] = std::max(columns[ref.piece.value], ref.column + 1);
+        for (const KnotRef& ref : system.refs)
+            columns[ref.piece.value] = std::max(columns[ref.piece.value], ref.column + 1);
         return columns;
     };
     const auto oldColumns = columnsOf(previous), newColumns = columnsOf(next);
     std::unordered_map<std::uint64_t, std::uint32_t> oldKnot, newKnot;
     for (std::size_t j = 0; j < previous.knotCount(); ++j) {
         std::uint64_t key = 0;
-        if (knotKey(previous, j, key)) oldKnot.emplace(key, static_cast<std::uint32_t>(j));
+        if (knotKey(previous, j, key))
+            oldKnot.emplace(key, static_cast<std::uint32_t>(j));
     }
     std::vector<std::pair<int, std::uint32_t>> added; // (row, knot) of knots new in `next`
     for (std::size_t j = 0; j < next.knotCount(); ++j) {
         std::uint64_t key = 0;
-        if (!knotKey(next, j, key)) continue;
+        if (!knotKey(next, j, key))
+            continue;
         newKnot.emplace(key, static_cast<std::uint32_t>(j));
         const KnotRef& ref = next.refs[next.refStart[j]];
         const auto old = oldColumns.find(ref.piece.value);
@@ -78,20 +87,25 @@ std::size_t continueNewRows(const MassSpringSystem& previous, MassSpringSystem& 
             old->second == newColumns.at(ref.piece.value))
             added.emplace_back(ref.row, static_cast<std::uint32_t>(j));
     }
-    std::sort(added.begin(), added.end()); // rows in order: a new row goes on from the new rows above it
+    std::sort(added.begin(),
+              added.end()); // rows in order: a new row goes on from the new rows above it
     std::size_t placed = 0;
     for (const auto& [row, j] : added) {
         const KnotRef& ref = next.refs[next.refStart[j]];
         std::uint32_t above[3];
         bool found = true;
         for (int i = 0; i < 3 && found; ++i) {
-            const std::uint64_t key = std::uint64_t{ref.piece.value} << 40 | std::uint64_t(row - 1 - i) << 20 | std::uint64_t(ref.column);
+            const std::uint64_t key = std::uint64_t{ref.piece.value} << 40 |
+                                      std::uint64_t(row - 1 - i) << 20 | std::uint64_t(ref.column);
             const auto at = newKnot.find(key);
             found = at != newKnot.end();
-            if (found) above[i] = at->second;
+            if (found)
+                above[i] = at->second;
         }
-        if (!found) continue;
-        next.position[j] = next.position[above[0]] + next.position[above[1]] - next.position[above[2]];
+        if (!found)
+            continue;
+        next.position[j] =
+            next.position[above[0]] + next.position[above[1]] - next.position[above[2]];
         ++placed;
     }
     return placed;
@@ -99,10 +113,14 @@ std::size_t continueNewRows(const MassSpringSystem& previous, MassSpringSystem& 
 
 std::vector<double> startTensions(const MassSpringSystem& previous, const MassSpringSystem& next) {
     const std::size_t bars = next.barCount();
-    auto lengthOf = [&](std::size_t b) { return distance(next.position[next.barA[b]], next.position[next.barB[b]]); };
+    auto lengthOf = [&](std::size_t b) {
+        return distance(next.position[next.barA[b]], next.position[next.barB[b]]);
+    };
     std::vector<double> hint(bars, 0.0);
-    if (previous.barA == next.barA && previous.barB == next.barB && previous.knotCount() == next.knotCount()) {
-        for (std::size_t b = 0; b < bars; ++b) hint[b] = tensionOf(previous, b, lengthOf(b)); // same topology
+    if (previous.barA == next.barA && previous.barB == next.barB &&
+        previous.knotCount() == next.knotCount()) {
+        for (std::size_t b = 0; b < bars; ++b)
+            hint[b] = tensionOf(previous, b, lengthOf(b)); // same topology
         return hint;
     }
     // Another topology (rows or columns changed): bars are matched by the knots they join.
@@ -110,7 +128,8 @@ std::vector<double> startTensions(const MassSpringSystem& previous, const MassSp
     oldKnot.reserve(previous.knotCount());
     for (std::size_t j = 0; j < previous.knotCount(); ++j) {
         std::uint64_t key = 0;
-        if (knotKey(previous, j, key)) oldKnot.emplace(key, static_cast<std::uint32_t>(j));
+        if (knotKey(previous, j, key))
+            oldKnot.emplace(key, static_cast<std::uint32_t>(j));
     }
     std::unordered_map<std::uint64_t, std::uint32_t> oldBar;
     oldBar.reserve(previous.barCount());
@@ -118,9 +137,11 @@ std::vector<double> startTensions(const MassSpringSystem& previous, const MassSp
         oldBar.emplace(pairKey(previous.barA[b], previous.barB[b]), static_cast<std::uint32_t>(b));
     auto oldOf = [&](std::uint32_t knot, std::uint32_t& old) {
         std::uint64_t key = 0;
-        if (!knotKey(next, knot, key)) return false;
+        if (!knotKey(next, knot, key))
+            return false;
         const auto at = oldKnot.find(key);
-        if (at == oldKnot.end()) return false;
+        if (at == oldKnot.end())
+            return false;
         old = at->second;
         return true;
     };
@@ -130,9 +151,11 @@ std::vector<double> startTensions(const MassSpringSystem& previous, const MassSp
     std::size_t matchedCount = 0;
     for (std::size_t b = 0; b < bars; ++b) {
         std::uint32_t a = 0, e = 0;
-        if (!oldOf(next.barA[b], a) || !oldOf(next.barB[b], e)) continue;
+        if (!oldOf(next.barA[b], a) || !oldOf(next.barB[b], e))
+            continue;
         const auto at = oldBar.find(pairKey(a, e));
-        if (at == oldBar.end()) continue;
+        if (at == oldBar.end())
+            continue;
         hint[b] = tensionOf(previous, at->second, lengthOf(b));
         matched[b] = 1;
         ++matchedCount;
@@ -142,21 +165,24 @@ std::vector<double> startTensions(const MassSpringSystem& previous, const MassSp
                 ++knotCount[knot];
             }
     }
-    if (2 * matchedCount < bars) return {};
+    if (2 * matchedCount < bars)
+        return {};
     // New bars, in passes outward from the old ones (several rows added: the second new row's
     // bars take the first's); a bar that no pass reaches keeps its own elastic tension.
     for (bool grew = true; grew;) {
         grew = false;
         std::vector<std::pair<std::size_t, double>> reached;
         for (std::size_t b = 0; b < bars; ++b) {
-            if (matched[b]) continue;
+            if (matched[b])
+                continue;
             double sum = 0;
             std::uint32_t count = 0;
             for (std::uint32_t knot : {next.barA[b], next.barB[b]}) {
                 sum += knotSum[knot];
                 count += knotCount[knot];
             }
-            if (count > 0) reached.emplace_back(b, sum / count);
+            if (count > 0)
+                reached.emplace_back(b, sum / count);
         }
         for (const auto& [b, t] : reached) {
             hint[b] = t;
@@ -169,7 +195,8 @@ std::vector<double> startTensions(const MassSpringSystem& previous, const MassSp
         }
     }
     for (std::size_t b = 0; b < bars; ++b)
-        if (!matched[b]) hint[b] = tensionOf(next, b, lengthOf(b));
+        if (!matched[b])
+            hint[b] = tensionOf(next, b, lengthOf(b));
     return hint;
 }
 

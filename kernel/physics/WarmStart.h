@@ -28,8 +28,8 @@ std::size_t continueNewRows(const MassSpringSystem& previous, MassSpringSystem& 
 /// `previous`, that bar's tension under `previous`'s rest length and stiffness at `next`'s
 /// positions (N): the tension the shape had before the edit. A bar new in `next` takes the mean
 /// positive hint of the bars at its knots (new rows carry load like the row above; rows further
-/// down take the hints of the new rows above them), or its own elastic tension when none has one. Empty (no hint) when fewer than half of `next`'s bars
-/// existed in `previous`.
+/// down take the hints of the new rows above them), or its own elastic tension when none has one.
+/// Empty (no hint) when fewer than half of `next`'s bars existed in `previous`.
 std::vector<double> startTensions(const MassSpringSystem& previous, const MassSpringSystem& next);
 
 } // namespace netsculpt
