@@ -181,8 +181,9 @@ void Panels::drawReport(App& app) {
         ImGui::TextDisabled("%zu slack bars", r.value("slack_bars", std::size_t{0}));
         if (const auto over = r.value("overstretched_bars", std::size_t{0});
             over > 0 && r.value("relaxed", false))
-            ImGui::TextColored(ImVec4(0.95f, 0.45f, 0.3f, 1), "%zu bars stretched > %.0f %%: check the design",
-                               over, 100 * r.value("overstretch_limit", 0.0));
+            ImGui::TextColored(ImVec4(0.95f, 0.45f, 0.3f, 1),
+                               "%zu bars stretched > %.0f %%: check the design", over,
+                               100 * r.value("overstretch_limit", 0.0));
         // The basis the numbers above were computed on (not the live state now: the report is
         // recomputed at most twice a second while a relaxation runs).
         switch (app.reportBasis()) {
