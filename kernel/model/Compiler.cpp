@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <numeric>
+#include <unordered_map>
 #include <unordered_set>
 
 namespace netsculpt {
@@ -347,6 +348,46 @@ std::uint32_t CompiledSculpture::knotOf(PieceId piece, int row, int column) cons
 
 CompiledSculpture compileSculpture(const Sculpture& s) { return Builder(s).build(); }
 
+namespace {
+
+/// A piece tied to a rail below whose rows grew: its free rows from the old rail row down are
+/// placed row by row between the two knots each hangs from, one even step nearer the rail (the
+/// last kept row's distance to the rail, column by column, in equal parts). Moved with the old
+/// rail row, as rows added below a hanging piece are, they would start tens of per cent off
+/// their length, which makes the next relaxation a cold one.
+void spreadRowsToRail(const MassSpringSystem& previousSystem, const PieceKnots& old,
+                      const PieceKnots& now, MassSpringSystem& sys) {
+    const int kept = old.rows - 2, rail = now.rows - 1;
+    if (now.rows <= old.rows || kept < 0 || old.columns != now.columns) return;
+    for (int c = 0; c < now.columns; ++c)
+        if (!previousSystem.fixed[old.at(old.rows - 1, c)] || !sys.fixed[now.at(rail, c)]) return;
+    // The knots each knot of the spread rows hangs from (its bars to the row above).
+    std::unordered_map<std::uint32_t, int> rowOf;
+    for (int r = kept; r < rail; ++r)
+        for (int c = 0; c < now.columns; ++c) rowOf.emplace(now.at(r, c), r);
+    std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> above;
+    for (std::size_t b = 0; b < sys.barCount(); ++b) {
+        const auto a = rowOf.find(sys.barA[b]), e = rowOf.find(sys.barB[b]);
+        if (a == rowOf.end() || e == rowOf.end() || std::abs(a->second - e->second) != 1) continue;
+        if (a->second < e->second) above[sys.barB[b]].push_back(sys.barA[b]);
+        else above[sys.barA[b]].push_back(sys.barB[b]);
+    }
+    for (int r = kept + 1; r < rail; ++r)
+        for (int c = 0; c < now.columns; ++c) {
+            const std::uint32_t k = now.at(r, c);
+            const auto up = above.find(k);
+            if (sys.fixed[k] || up == above.end()) continue;
+            Vec3 mean;
+            for (std::uint32_t u : up->second) mean += sys.position[u];
+            mean = mean * (1.0 / double(up->second.size()));
+            const Vec3 step = (sys.position[now.at(rail, c)] - sys.position[now.at(kept, c)]) *
+                              (1.0 / double(rail - kept));
+            sys.position[k] = mean + step;
+        }
+}
+
+} // namespace
+
 std::size_t carryPositions(const CompiledSculpture& previous, CompiledSculpture& next) {
     MassSpringSystem& sys = next.system;
     const std::vector<Vec3> initial = sys.position;
@@ -365,6 +406,9 @@ std::size_t carryPositions(const CompiledSculpture& previous, CompiledSculpture&
         sys.position[k] = row == ref.row ? relaxed : initial[k] + (relaxed - start);
         ++carried;
     }
+    for (const auto& [id, now] : next.pieces)
+        if (const auto old = previous.pieces.find(id); old != previous.pieces.end())
+            spreadRowsToRail(previous.system, old->second, now, sys);
     return carried;
 }
 

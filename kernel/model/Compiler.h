@@ -35,7 +35,9 @@ double railPosition(const RailEdge& edge, int column);
 
 /// A warm start after an edit: free knots of `next` that stand for the same (piece, row, column)
 /// as in `previous` take its (relaxed) position, for pieces whose column count is unchanged;
-/// knots of rows added below move with the last old row. Returns how many knots were carried.
+/// knots of rows added below move with the last old row, except in a piece tied to a rail below,
+/// where the free rows from the old rail row down are spread evenly between the last row kept and
+/// the rail. Returns how many knots were carried.
 std::size_t carryPositions(const CompiledSculpture& previous, CompiledSculpture& next);
 
 } // namespace netsculpt

@@ -248,6 +248,40 @@ TEST_CASE("relaxing after an edit of a relaxed shape starts from the tensions it
     CHECK(hinted.steps * 2 < unhinted.steps); // measured: 12 against 31
 }
 
+TEST_CASE("rows added to a piece tied to a rail below start between its last row and the rail") {
+    // The skirt of the test above, 8 -> 11 rows: its rail row moves down the piece. The rows from
+    // the old rail row down are placed between the knots they hang from, a step nearer the rail.
+    Document doc;
+    doc.execute(AddRailCommand{"top", ringSpec(24, 1.0, 3.0)});
+    doc.execute(AddRailCommand{"tie", ringSpec(24, 1.3, 1.2)});
+    doc.execute(attach(1, 24, 10, 0.2));
+    doc.execute(hang(1, Gear{2, 1}, 8, 0.16));
+    doc.execute(ConnectToRailCommand{PieceId(2), RailId(2), 0.0, false});
+    DocumentRelaxOptions options;
+    options.solver.maxSeconds = 60;
+    REQUIRE(doc.relax(options).converged);
+    const Vec3 keptKnot = doc.compiled().system.position[doc.compiled().knotOf(PieceId(2), 6, 0)];
+
+    doc.execute(SetRowsCommand{PieceId(2), 11});
+    const CompiledSculpture& c = doc.compiled();
+    const MassSpringSystem& s = c.system;
+    double maxStrain = 0;
+    for (std::size_t b = 0; b < s.barCount(); ++b)
+        maxStrain = std::max(maxStrain, distance(s.position[s.barA[b]], s.position[s.barB[b]]) /
+                                                s.restLength[b] - 1);
+    CHECK(maxStrain < 0.02); // moved with the old rail row, the new rows started 20-30 % off
+    CHECK(sameBits(s.position[c.knotOf(PieceId(2), 6, 0)], keptKnot)); // the kept rows stay
+    const Vec3 rail = s.position[c.knotOf(PieceId(2), 10, 0)];
+    double before = distance(keptKnot, rail);
+    for (int row = 7; row < 10; ++row) { // each row nearer the rail than the one above it
+        const double now = distance(s.position[c.knotOf(PieceId(2), row, 0)], rail);
+        CHECK(now < before);
+        before = now;
+    }
+    const RelaxResult relaxed = doc.relax(options);
+    CHECK(relaxed.converged);
+}
+
 TEST_CASE("merged commands are one undo step and equal doing both") {
     Document merged = fixtureDocument();
     Document separate = fixtureDocument();
