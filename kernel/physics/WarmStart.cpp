@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace netsculpt {
 
@@ -69,6 +70,16 @@ std::size_t continueNewRows(const MassSpringSystem& previous, MassSpringSystem& 
         return columns;
     };
     const auto oldColumns = columnsOf(previous), newColumns = columnsOf(next);
+    // Pieces tied to a rail below (their last row held) are left as they are: the document's warm
+    // start spreads their rows between the rows they kept and the rail (Compiler.h).
+    std::unordered_map<std::uint32_t, int> lastRow;
+    for (const KnotRef& ref : next.refs)
+        lastRow[ref.piece.value] = std::max(lastRow[ref.piece.value], ref.row);
+    std::unordered_set<std::uint32_t> tied;
+    for (std::size_t j = 0; j < next.knotCount(); ++j)
+        for (std::uint32_t i = next.refStart[j]; next.fixed[j] && i < next.refStart[j + 1]; ++i)
+            if (next.refs[i].row > 0 && next.refs[i].row == lastRow[next.refs[i].piece.value])
+                tied.insert(next.refs[i].piece.value);
     std::unordered_map<std::uint64_t, std::uint32_t> oldKnot, newKnot;
     for (std::size_t j = 0; j < previous.knotCount(); ++j) {
         std::uint64_t key = 0;
@@ -84,7 +95,7 @@ std::size_t continueNewRows(const MassSpringSystem& previous, MassSpringSystem& 
         const KnotRef& ref = next.refs[next.refStart[j]];
         const auto old = oldColumns.find(ref.piece.value);
         if (!next.fixed[j] && !oldKnot.contains(key) && ref.row >= 3 && old != oldColumns.end() &&
-            old->second == newColumns.at(ref.piece.value))
+            old->second == newColumns.at(ref.piece.value) && !tied.contains(ref.piece.value))
             added.emplace_back(ref.row, static_cast<std::uint32_t>(j));
     }
     std::sort(added.begin(),

@@ -17,7 +17,8 @@ namespace netsculpt {
 /// A hung net is narrower and more stretched at the bottom than the Eq. 2 geometry that the
 /// document's warm start offsets new rows by, which starts their bars up to tens of per cent
 /// from their length; after this they start near the strain of the rows above. Knots matched by
-/// their first (piece, row, column). Returns how many were placed.
+/// their first (piece, row, column). Not in a piece tied to a rail below, whose new rows the
+/// document's warm start places between its kept rows and the rail. Returns how many were placed.
 /// Free knots of `next` that `previous` also had take `previous`'s positions: a shape relaxed
 /// under an older law, carried across the edits since (the studio's refine starts from its last
 /// refined shape, not from the soft preview's). Returns how many were carried.
