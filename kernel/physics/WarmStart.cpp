@@ -33,16 +33,22 @@ std::uint64_t pairKey(std::uint32_t a, std::uint32_t b) {
     return std::uint64_t{std::min(a, b)} << 32 | std::max(a, b);
 }
 
+/// Every knot of `system` by its knotKey (knots without one left out).
+std::unordered_map<std::uint64_t, std::uint32_t> knotsByKey(const MassSpringSystem& system) {
+    std::unordered_map<std::uint64_t, std::uint32_t> knots;
+    knots.reserve(system.knotCount());
+    for (std::size_t j = 0; j < system.knotCount(); ++j) {
+        std::uint64_t key = 0;
+        if (knotKey(system, j, key))
+            knots.emplace(key, static_cast<std::uint32_t>(j));
+    }
+    return knots;
+}
+
 } // namespace
 
 std::size_t carryMatchedPositions(const MassSpringSystem& previous, MassSpringSystem& next) {
-    std::unordered_map<std::uint64_t, std::uint32_t> oldKnot;
-    oldKnot.reserve(previous.knotCount());
-    for (std::size_t j = 0; j < previous.knotCount(); ++j) {
-        std::uint64_t key = 0;
-        if (knotKey(previous, j, key))
-            oldKnot.emplace(key, static_cast<std::uint32_t>(j));
-    }
+    const std::unordered_map<std::uint64_t, std::uint32_t> oldKnot = knotsByKey(previous);
     std::size_t carried = 0;
     for (std::size_t j = 0; j < next.knotCount(); ++j) {
         std::uint64_t key = 0;
@@ -135,13 +141,7 @@ std::vector<double> startTensions(const MassSpringSystem& previous, const MassSp
         return hint;
     }
     // Another topology (rows or columns changed): bars are matched by the knots they join.
-    std::unordered_map<std::uint64_t, std::uint32_t> oldKnot;
-    oldKnot.reserve(previous.knotCount());
-    for (std::size_t j = 0; j < previous.knotCount(); ++j) {
-        std::uint64_t key = 0;
-        if (knotKey(previous, j, key))
-            oldKnot.emplace(key, static_cast<std::uint32_t>(j));
-    }
+    const std::unordered_map<std::uint64_t, std::uint32_t> oldKnot = knotsByKey(previous);
     std::unordered_map<std::uint64_t, std::uint32_t> oldBar;
     oldBar.reserve(previous.barCount());
     for (std::size_t b = 0; b < previous.barCount(); ++b)

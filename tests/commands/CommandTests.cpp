@@ -31,6 +31,19 @@ double maxDistance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
     return worst;
 }
 
+/// Piece 1: a tube of 24 columns and 10 rows (bars 0.2 m) on a ring of radius 1 m at z = 3 m, in
+/// real rope; piece 2 below it (gear 2, 8 rows, bars 0.16 m) tied to a ring of radius 1.3 m at
+/// z = 1.2 m, like the installation's core and bell.
+Document skirtTiedBelow() {
+    Document doc;
+    doc.execute(AddRailCommand{"top", ringSpec(24, 1.0, 3.0)});
+    doc.execute(AddRailCommand{"tie", ringSpec(24, 1.3, 1.2)});
+    doc.execute(attach(1, 24, 10, 0.2));
+    doc.execute(hang(1, Gear{2, 1}, 8, 0.16));
+    doc.execute(ConnectToRailCommand{PieceId(2), RailId(2), 0.0, false});
+    return doc;
+}
+
 SetBarLengthCommand barLength(std::uint32_t piece, std::optional<int> column, std::optional<int> row, double l) {
     return SetBarLengthCommand{PieceId(piece), column, row, l};
 }
@@ -221,12 +234,7 @@ TEST_CASE("relaxing after an edit of a relaxed shape starts from the tensions it
     // A tube on a ring with a skirt (gear 2) tied to a wider ring below, in real rope, like the
     // installation's core and bell. Lengthening the tube's bars by 5 % slackens the skirt and
     // leaves the whole net far out of balance (residual over a thousand knot weights).
-    Document doc;
-    doc.execute(AddRailCommand{"top", ringSpec(24, 1.0, 3.0)});
-    doc.execute(AddRailCommand{"tie", ringSpec(24, 1.3, 1.2)});
-    doc.execute(attach(1, 24, 10, 0.2));
-    doc.execute(hang(1, Gear{2, 1}, 8, 0.16));
-    doc.execute(ConnectToRailCommand{PieceId(2), RailId(2), 0.0, false});
+    Document doc = skirtTiedBelow();
     DocumentRelaxOptions options;
     options.solver.maxSeconds = 60;
     REQUIRE(doc.relax(options).converged);
@@ -251,12 +259,7 @@ TEST_CASE("relaxing after an edit of a relaxed shape starts from the tensions it
 TEST_CASE("rows added to a piece tied to a rail below start between its last row and the rail") {
     // The skirt of the test above, 8 -> 11 rows: its rail row moves down the piece. The rows from
     // the old rail row down are placed between the knots they hang from, a step nearer the rail.
-    Document doc;
-    doc.execute(AddRailCommand{"top", ringSpec(24, 1.0, 3.0)});
-    doc.execute(AddRailCommand{"tie", ringSpec(24, 1.3, 1.2)});
-    doc.execute(attach(1, 24, 10, 0.2));
-    doc.execute(hang(1, Gear{2, 1}, 8, 0.16));
-    doc.execute(ConnectToRailCommand{PieceId(2), RailId(2), 0.0, false});
+    Document doc = skirtTiedBelow();
     DocumentRelaxOptions options;
     options.solver.maxSeconds = 60;
     REQUIRE(doc.relax(options).converged);
