@@ -14,6 +14,9 @@
 // Warm starts: each preview passes the backend the tensions its start shape had in the system
 // before the edit (startTensions), which the fast path turns into a predictor step: after a small
 // edit it converges in two or three Newton iterations instead of redoing its soft start stage.
+// A refine after an edit of a refined shape first tries that shape, carried across the edit, with
+// the tensions it had (refineRun), and goes on from the preview's shape if that does not converge
+// within a few iterations.
 //
 // Publication: the worker builds a new immutable LiveState and swaps a shared_ptr under a mutex;
 // latest() copies the pointer (the UI reads a state nobody writes).
