@@ -293,8 +293,8 @@ void NewtonRun::keepIfBest() {
 /// (the linear response of the hinted state to the new rest lengths, stiffnesses and loads) and
 /// the next ones converge quadratically, as long as the bars the hint has taut are taut at the
 /// equilibrium. At most kHintIterations, down to `tolerance`; the state reached is kept only when
-/// its residual under the material's law is below the start's, and the run goes on from there
-/// (the usual decision: a start near the equilibrium is warm).
+/// its residual under the material's law is below the start's and kHintKeepResidual, and the run
+/// goes on from there (the usual decision: a start near the equilibrium is warm).
 void NewtonRun::hintedStart(double tolerance) {
     const std::span<const double> hint = options_.startTensions;
     const std::vector<Vec3> start = x_;
@@ -346,7 +346,7 @@ void NewtonRun::hintedStart(double tolerance) {
     compressionBlend_ = -1;
     setCompression(0.0);
     residual_ = evaluate(x_);
-    if (!(residual_ < startResidual)) {
+    if (!(residual_ < startResidual && residual_ < kHintKeepResidual)) {
         x_ = start;
         residual_ = evaluate(x_);
     }
