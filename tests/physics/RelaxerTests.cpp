@@ -158,7 +158,8 @@ TEST_CASE("Rails brought closer than the net's length leave bars in compression 
             const double length = distance(net.position[net.barA[b]], net.position[net.barB[b]]);
             if (length < net.restLength[b]) {
                 ++count;
-                CHECK(tension[b] == Approx(net.kCompression[b] * (length - net.restLength[b])));
+                CHECK(tension[b] == Approx(net.kCompression[b] * (length - net.restLength[b]))
+                                        .margin(1e-12)); // N: bars at the rest length to rounding
             }
         }
         return count;
