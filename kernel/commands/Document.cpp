@@ -191,6 +191,9 @@ struct Document::State {
                 warm = memo.positions != nullptr;
                 relaxed = warm && memo.relaxed;
                 compiled = std::move(*next);
+                // The next relax's hint comes from this shape's own law, or from none.
+                if (relaxed) relaxedSystem = compiled.system;
+                else relaxedSystem.reset();
             } else { // unknown: warm-start from the current shape when it is relaxed
                 installCompiled(std::move(*next));
             }

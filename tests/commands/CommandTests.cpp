@@ -256,6 +256,29 @@ TEST_CASE("relaxing after an edit of a relaxed shape starts from the tensions it
     CHECK(hinted.steps * 2 < unhinted.steps); // measured: 12 against 31
 }
 
+TEST_CASE("after an undo, the next relaxation's hint comes from the shape the undo restored") {
+    // Relaxed, edited (bars 0.21 m), relaxed, undone: the shape is the first relaxation's again,
+    // and an edit from there (bars 0.19 m) must relax exactly as it does without the detour.
+    DocumentRelaxOptions options;
+    options.solver.maxSeconds = 60;
+    Document direct = skirtTiedBelow();
+    REQUIRE(direct.relax(options).converged);
+    direct.execute(barLength(1, std::nullopt, std::nullopt, 0.19));
+    const RelaxResult expected = direct.relax(options);
+
+    Document detour = skirtTiedBelow();
+    REQUIRE(detour.relax(options).converged);
+    detour.execute(barLength(1, std::nullopt, std::nullopt, 0.21));
+    REQUIRE(detour.relax(options).converged);
+    detour.undo();
+    REQUIRE(detour.isRelaxed());
+    detour.execute(barLength(1, std::nullopt, std::nullopt, 0.19));
+    const RelaxResult result = detour.relax(options);
+    REQUIRE(result.converged);
+    CHECK(result.steps == expected.steps);
+    CHECK(maxDistance(detour.compiled().system.position, direct.compiled().system.position) == 0);
+}
+
 TEST_CASE("rows added to a piece tied to a rail below start between its last row and the rail") {
     // The skirt of the test above, 8 -> 11 rows: its rail row moves down the piece. The rows from
     // the old rail row down are placed between the knots they hang from, a step nearer the rail.
