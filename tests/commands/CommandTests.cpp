@@ -3,6 +3,7 @@
 // journal untouched.
 
 #include "CommandTestSupport.h"
+#include "ShapeDistance.h"
 
 #include "physics/Forces.h"
 #include "physics/fast/NewtonRelaxer.h"
@@ -23,13 +24,6 @@ struct Case {
     std::function<void(Document&)> setup; ///< extra commands on the fixture before the one tested
     Command command;
 };
-
-double maxDistance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-    double worst = 0;
-    for (std::size_t i = 0; i < a.size(); ++i)
-        worst = std::max(worst, distance(a[i], b[i]));
-    return worst;
-}
 
 /// Piece 1: a tube of 24 columns and 10 rows (bars 0.2 m) on a ring of radius 1 m at z = 3 m, in
 /// real rope; piece 2 below it (gear 2, 8 rows, bars 0.16 m) tied to a ring of radius 1.3 m at

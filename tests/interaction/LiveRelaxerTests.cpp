@@ -2,6 +2,7 @@
 // the given positions on every edit, and Refine converges at the material's stiffness.
 
 #include "InteractionTestSupport.h"
+#include "ShapeDistance.h"
 
 #include "interaction/LiveRelaxer.h"
 #include "model/Compiler.h"
@@ -132,12 +133,6 @@ MassSpringSystem softEquilibrium(const Document& doc, const std::vector<Vec3>& p
     options.tolerance = tolerance;
     REQUIRE(relaxFast(soft, options).converged);
     return soft;
-}
-
-double maxDistance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-    double worst = 0;
-    for (std::size_t j = 0; j < a.size(); ++j) worst = std::max(worst, distance(a[j], b[j]));
-    return worst;
 }
 
 double maxStrain(const MassSpringSystem& s) {

@@ -1,5 +1,6 @@
 // The overdamped RK4 relaxation (Eq. 7) against independent solutions and its contracts.
 // Materials are soft (EA 50..100 N) so that each case converges in well under a second.
+#include "ShapeDistance.h"
 #include "model/Error.h"
 #include "physics/Forces.h"
 #include "physics/ReferenceNets.h"
@@ -13,6 +14,7 @@
 #include <numbers>
 
 using namespace netsculpt;
+using netsculpt::test::maxDistance;
 using Catch::Matchers::WithinAbs;
 
 namespace {
@@ -29,13 +31,6 @@ MassSpringSystem smallSheet(double stiffness = 100) {
     spec.columns = 8;
     spec.material = softRope(stiffness);
     return makeSheet(spec);
-}
-
-double maxDistance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-    double worst = 0;
-    for (std::size_t j = 0; j < a.size(); ++j)
-        worst = std::max(worst, distance(a[j], b[j]));
-    return worst;
 }
 
 bool allFinite(const MassSpringSystem& s) {

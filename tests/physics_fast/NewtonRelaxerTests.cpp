@@ -1,6 +1,7 @@
 // The "fast" Newton relaxation (kernel/physics/fast/NewtonRelaxer.h): the same equilibrium as
 // the RK4 path, warm starts, determinism, honest convergence reports, the realistic rope.
 // Comparisons with RK4 use a soft rope (EA 50 N) so that RK4 converges in well under a second.
+#include "ShapeDistance.h"
 #include "model/Compiler.h"
 #include "model/Edits.h"
 #include "model/Error.h"
@@ -21,6 +22,7 @@
 #include <string>
 
 using namespace netsculpt;
+using netsculpt::test::maxDistance;
 
 namespace {
 
@@ -83,13 +85,6 @@ Sculpture gearStack(double stiffness) {
         setMaterial(s, id, rope(stiffness));
     refreshAndValidate(s);
     return s;
-}
-
-double maxDistance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-    double worst = 0;
-    for (std::size_t j = 0; j < a.size(); ++j)
-        worst = std::max(worst, distance(a[j], b[j]));
-    return worst;
 }
 
 bool sameBits(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
