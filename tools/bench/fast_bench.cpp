@@ -6,8 +6,10 @@
 //   tube-100x200    100 x 200 (20k knots), target < 0.5 s
 //   slack-100x200   a sheet on an open rail whose last row is connected to a second, parallel
 //                   rail nearer than the sheet's height (it starts slack), target < 0.5 s
+//   slack-100x1000  the same sheet with 1000 columns (100k knots), target < 5 s
 //   banner-RxC      (only when asked for, e.g. --scene banner-90x51) the installation's banner,
-//                   R rows x C columns (BenchScenes.h), target < 5 s as for the installation
+//                   R rows x C columns (BenchScenes.h), target < 5 s as for the installation;
+//                   tube-RxC and slack-RxC likewise give those nets at any size
 // For each: wall seconds, Newton iterations (soft stage + final), factorizations, residual,
 // then the RK4 path under a time cap (residual reached) and the ratio of their times. Then the
 // force pass (Eq. 3) at 20k and 100k knots: ns per bar with 1 and 2 threads, against the memory
@@ -17,6 +19,7 @@
 //   netsculpt-bench-fast --quick         20x40 nets, short RK4 caps (CI smoke)
 //   --scene NAME   only that net          --threads N   thread count (default automatic)
 //   --rk4-cap S    RK4 time cap, s         --no-rk4      skip the RK4 runs
+//   --cap S        the fast path's time cap, s (default 120)
 //   --trace        print the fast path's residual after every Newton iteration
 
 #include "BenchScenes.h"
@@ -65,14 +68,22 @@ MassSpringSystem build(const Scene& scene) {
     return bench::tubeOnCircularRail(scene.rows, scene.columns, rope);
 }
 
-/// "banner-RxC" as a scene, R and C from 2 to 1000; nothing for any other name.
-std::vector<Scene> bannerScene(const std::string& name) {
-    int rows = 0, columns = 0;
-    char end = 0;
-    if (std::sscanf(name.c_str(), "banner-%dx%d%c", &rows, &columns, &end) != 2 || rows < 2 ||
-        columns < 2 || rows > 1000 || columns > 1000)
-        return {};
-    return {{name, Shape::Banner, rows, columns, 5.0}};
+/// A net asked for by its shape and size: "tube-RxC", "slack-RxC" or "banner-RxC", R and C
+/// from 2 to 1000 (its target: 0.5 s up to 20,000 knots, 5 s above); nothing for any other name.
+std::vector<Scene> sizedScene(const std::string& name) {
+    const std::pair<const char*, Shape> shapes[] = {{"tube-%dx%d%c", Shape::Tube},
+                                                    {"slack-%dx%d%c", Shape::Slack},
+                                                    {"banner-%dx%d%c", Shape::Banner}};
+    for (const auto& [format, shape] : shapes) {
+        int rows = 0, columns = 0;
+        char end = 0;
+        if (std::sscanf(name.c_str(), format, &rows, &columns, &end) != 2 || rows < 2 ||
+            columns < 2 || rows > 1000 || columns > 1000)
+            continue;
+        const bool small = rows * columns <= 20000 && shape != Shape::Banner;
+        return {{name, shape, rows, columns, small ? 0.5 : 5.0}};
+    }
+    return {};
 }
 
 std::size_t compressedBars(const MassSpringSystem& system) {
@@ -82,16 +93,22 @@ std::size_t compressedBars(const MassSpringSystem& system) {
     return count;
 }
 
-void runScene(const Scene& scene, int threads, double rk4Cap, bool rk4, bool trace) {
+struct RunSettings {
+    int threads = 0;
+    double fastCap = 120, rk4Cap = 60;
+    bool rk4 = true, trace = false;
+};
+
+void runScene(const Scene& scene, const RunSettings& settings) {
     const MassSpringSystem start = build(scene);
     std::printf("\n== %s: %zu knots, %zu bars (target %.2g s)\n", scene.name.c_str(),
                 start.knotCount(), start.barCount(), scene.targetSeconds);
 
     MassSpringSystem system = start;
     RelaxOptions options;
-    options.threads = threads;
-    options.maxSeconds = 120;
-    if (trace) {
+    options.threads = settings.threads;
+    options.maxSeconds = settings.fastCap;
+    if (settings.trace) {
         options.progressInterval = 0;
         options.progress = [](const RelaxProgress& p) {
             std::printf("  iteration %lld  %.3f s  scale %.3g  residual %.3g\n",
@@ -104,7 +121,8 @@ void runScene(const Scene& scene, int threads, double rk4Cap, bool rk4, bool tra
     std::printf("fast: %s in %.3f s (%s), residual %.3g, %lld Newton iterations (%lld soft at "
                 "scale %.3g), %lld factorizations (%lld failed)\n",
                 result.converged ? "converged" : "NOT converged", result.seconds,
-                result.seconds <= scene.targetSeconds ? "within target" : "over target",
+                result.converged && result.seconds <= scene.targetSeconds ? "within target"
+                                                                          : "over target",
                 result.residual, static_cast<long long>(stats.iterations),
                 static_cast<long long>(stats.softIterations), stats.softScale,
                 static_cast<long long>(stats.factorizations),
@@ -119,11 +137,11 @@ void runScene(const Scene& scene, int threads, double rk4Cap, bool rk4, bool tra
                 stats.solveSeconds,
                 result.seconds - stats.analysisSeconds - stats.factorSeconds - stats.solveSeconds,
                 compressedBars(system));
-    if (!rk4)
+    if (!settings.rk4)
         return;
     MassSpringSystem reference = start;
     RelaxOptions rk4Options = options;
-    rk4Options.maxSeconds = rk4Cap;
+    rk4Options.maxSeconds = settings.rk4Cap;
     const RelaxResult slow = relaxRk4(reference, rk4Options);
     std::printf("rk4:  %s in %.3f s, residual %.3g, %lld force evaluations\n",
                 slow.converged ? "converged" : "NOT converged (time cap)", slow.seconds,
@@ -218,47 +236,62 @@ void forcePass(bool quick) {
 } // namespace
 
 int main(int argc, char** argv) {
-    bool quick = false, rk4 = true, trace = false;
-    int threads = 0;
-    double rk4Cap = -1;
+    bool quick = false;
+    RunSettings settings;
+    settings.rk4Cap = -1;
     std::string only;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         if (arg == "--quick")
             quick = true;
         else if (arg == "--no-rk4")
-            rk4 = false;
+            settings.rk4 = false;
         else if (arg == "--trace")
-            trace = true;
+            settings.trace = true;
         else if (arg == "--threads" && i + 1 < argc)
-            threads = std::atoi(argv[++i]);
+            settings.threads = std::atoi(argv[++i]);
         else if (arg == "--rk4-cap" && i + 1 < argc)
-            rk4Cap = std::atof(argv[++i]);
+            settings.rk4Cap = std::atof(argv[++i]);
+        else if (arg == "--cap" && i + 1 < argc)
+            settings.fastCap = std::atof(argv[++i]);
         else if (arg == "--scene" && i + 1 < argc)
             only = argv[++i];
         else {
             std::fprintf(stderr, "usage: %s [--quick] [--threads N] [--rk4-cap S] [--no-rk4] "
-                                 "[--scene NAME] [--trace]\n", argv[0]);
+                                 "[--scene NAME] [--cap S] [--trace]\n", argv[0]);
             return 2;
         }
     }
-    // A banner asked for by its size runs alone.
-    std::vector<Scene> scenes = bannerScene(only);
+    // A net asked for by its size runs alone.
+    std::vector<Scene> scenes = sizedScene(only);
     if (scenes.empty())
         scenes = quick ? std::vector<Scene>{{"tube-20x40", Shape::Tube, 20, 40, 0.05},
                                             {"slack-20x40", Shape::Slack, 20, 40, 0.05}}
                        : std::vector<Scene>{{"tube-100x200", Shape::Tube, 100, 200, 0.5},
                                             {"slack-100x200", Shape::Slack, 100, 200, 0.5},
-                                            {"tube-100x1000", Shape::Tube, 100, 1000, 5.0}};
-    if (rk4Cap < 0)
-        rk4Cap = quick ? 2.0 : 60.0;
+                                            {"tube-100x1000", Shape::Tube, 100, 1000, 5.0},
+                                            {"slack-100x1000", Shape::Slack, 100, 1000, 5.0}};
+    const bool known = only.empty() || only == "force" ||
+                       std::any_of(scenes.begin(), scenes.end(),
+                                   [&](const Scene& scene) { return scene.name == only; });
+    if (!known) {
+        std::fprintf(stderr, "netsculpt-bench-fast: no scene \"%s\"; the scenes are tube-100x200, "
+                             "slack-100x200, tube-100x1000, slack-100x1000, force, and "
+                             "tube-RxC, slack-RxC or banner-RxC for R and C from 2 to 1000\n",
+                     only.c_str());
+        return 2;
+    }
+    if (settings.rk4Cap < 0)
+        settings.rk4Cap = quick ? 2.0 : 60.0;
+    const std::string threads =
+        settings.threads == 0 ? "automatic" : std::to_string(settings.threads);
     std::printf("netsculpt-bench-fast: rope EA 2e5 N, tolerance 1e-6, threads %s, %u hardware "
-                "threads, built for %s\n", threads == 0 ? "automatic" : std::to_string(threads).c_str(),
-                std::thread::hardware_concurrency(), bench::instructionSet());
+                "threads, built for %s\n", threads.c_str(), std::thread::hardware_concurrency(),
+                bench::instructionSet());
     try {
         for (const Scene& scene : scenes)
             if (only.empty() || only == scene.name)
-                runScene(scene, threads, rk4Cap, rk4, trace);
+                runScene(scene, settings);
         if (only.empty() || only == "force")
             forcePass(quick);
     } catch (const std::exception& e) {
