@@ -78,7 +78,8 @@ void Camera::frame(const Vec3& lo, const Vec3& hi) {
     target = (lo + hi) * 0.5;
     const double radius = std::max(0.5 * (hi - lo).norm(), 1e-3);
     sceneRadius = radius;
-    const double aspect = double(width_) / height_;
+    const int inset = width_ - 2 * frameInset >= width_ / 3 ? frameInset : 0;
+    const double aspect = double(width_ - 2 * inset) / height_;
     const double halfFov = 0.5 * std::min(fovY, 2 * std::atan(std::tan(0.5 * fovY) * aspect));
     distance = radius / std::sin(halfFov) * 1.02;
 }

@@ -57,6 +57,9 @@ class Camera {
     double pitch = 0.3;                ///< rad
     double fovY = 0.6981317007977318;  ///< vertical field of view, rad (40 degrees)
     double sceneRadius = 5;            ///< m; sets the near and far planes
+    /// Pixels that frame() keeps clear at the window's left and right edges (the studio's
+    /// panels), when the window is wide enough to leave a third of it.
+    int frameInset = 0;
 
     /// Turns the view by a mouse drag of (dx, dy) pixels (drag right = the scene turns right).
     void orbit(double dxPixels, double dyPixels, double radiansPerPixel = 0.007);
@@ -64,7 +67,8 @@ class Camera {
     void pan(double dxPixels, double dyPixels);
     /// steps > 0 moves closer: distance *= 0.85^steps.
     void zoom(double steps);
-    /// Centres the box [lo, hi] and backs off until all of it is in view, keeping yaw and pitch.
+    /// Centres the box [lo, hi] and backs off until all of it is in view, between frameInset
+    /// pixels from the left and right edges, keeping yaw and pitch.
     void frame(const Vec3& lo, const Vec3& hi);
     /// Looks from a preset direction (keeps target and distance).
     void setPreset(ViewPreset preset);

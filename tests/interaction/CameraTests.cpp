@@ -62,6 +62,28 @@ TEST_CASE("camera: frame keeps the box in view, presets look along the axes", "[
     CHECK(c.forward().x == Approx(-1));
 }
 
+TEST_CASE("camera: frame keeps the box clear of the insets at the window's sides", "[camera]") {
+    Camera c(1280, 800);
+    c.frameInset = 320;
+    const Vec3 lo{-10, -1, 0}, hi{10, 1, 4}; // wide: the width decides the distance
+    c.frame(lo, hi);
+    double left = 1280, right = 0;
+    for (int i = 0; i < 8; ++i) {
+        const Vec3 corner{i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z};
+        left = std::min(left, c.project(corner).x);
+        right = std::max(right, c.project(corner).x);
+    }
+    CHECK(left >= 320);
+    CHECK(right <= 1280 - 320);
+    CHECK(right - left > 0.5 * (1280 - 2 * 320)); // and still fills the space between them
+    // A window too narrow for the insets frames across its whole width.
+    Camera narrow(600, 800);
+    narrow.frameInset = 320;
+    narrow.frame(lo, hi);
+    CHECK(narrow.project(lo).visible);
+    CHECK(narrow.project(hi).visible);
+}
+
 TEST_CASE("camera: drags orbit and pan, the wheel zooms, keys choose views", "[camera]") {
     Scene scene;
     Interaction ui(scene.doc, scene.camera);

@@ -5,6 +5,7 @@
 #include "commands/Journal.h"
 #include "interaction/DemoScenes.h"
 #include "interaction/Handles.h"
+#include "Panels.h" // tools/studio: the panels the studio frames around
 
 #include <catch2/catch.hpp>
 #include <stb_image.h>
@@ -65,6 +66,7 @@ Camera studioCamera() {
     Document demo;
     buildDemoSculpture(demo);
     Camera camera(kWidth, kHeight);
+    camera.frameInset = studio::Panels::kFrameInset;
     const auto [lo, hi] = sceneBounds(demo.sculpture(), demo.compiled());
     camera.frame(lo, hi);
     return camera;

@@ -89,6 +89,7 @@ App::App(StudioOptions options) : options_(std::move(options)) {
     scriptRunner_ = makeScriptRunner();
     if (options_.play) script_ = readEventScript(options_.play->string());
     camera_.setViewport(options_.width, options_.height);
+    camera_.frameInset = Panels::kFrameInset;
     doc_ = std::make_unique<Document>();
     interaction_ = std::make_unique<Interaction>(*doc_, camera_);
     LiveRelaxOptions live;

@@ -24,6 +24,9 @@ class Panels {
 
     static constexpr float kLeftWidth = 300;  ///< px, the inspector on the left
     static constexpr float kRightWidth = 270; ///< px, the solver panel on the right
+    /// px that framing the sculpture keeps clear at each side of the window (Camera::frameInset)
+    static constexpr int kFrameInset =
+        int(kLeftWidth > kRightWidth ? kLeftWidth : kRightWidth) + 16;
 
   private:
     void drawMenu(App& app);
