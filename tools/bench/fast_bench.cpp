@@ -118,9 +118,11 @@ void runScene(const Scene& scene, const RunSettings& settings) {
     FastRelaxer fast;
     const RelaxResult result = fast.relax(system, options);
     const NewtonStatistics& stats = fast.statistics();
+    const std::string outcome =
+        result.converged ? "converged" : "NOT converged (" + result.stopReason + ")";
     std::printf("fast: %s in %.3f s (%s), residual %.3g, %lld Newton iterations (%lld soft at "
                 "scale %.3g), %lld factorizations (%lld failed)\n",
-                result.converged ? "converged" : "NOT converged", result.seconds,
+                outcome.c_str(), result.seconds,
                 result.converged && result.seconds <= scene.targetSeconds ? "within target"
                                                                           : "over target",
                 result.residual, static_cast<long long>(stats.iterations),

@@ -63,6 +63,10 @@ std::string describeRelaxResult(const RelaxResult& r) {
         described += ", largest at " + toString(r.unsettledAt->piece) + " row " +
                      std::to_string(r.unsettledAt->row) + " column " +
                      std::to_string(r.unsettledAt->column);
+    if (r.stopReason == "precision limit")
+        described += "; the knots are as near the equilibrium as their coordinates can be written: "
+                     "move the sculpture nearer the origin (0, 0, 0) or relax with a larger "
+                     "tolerance";
     return described;
 }
 

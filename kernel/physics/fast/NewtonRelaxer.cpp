@@ -138,6 +138,7 @@ void NewtonRun::runStage(const Stage& stage, bool lastStage, bool slack) {
     shift_ = minShift;
     const std::int64_t stageStart = steps_;
     int exactPause = 0; // iterations left before the exact Hessian is tried again
+    int roundingSteps = 0; // steps in a row that moved no knot beyond kRoundingUnits
     if (lastStage)
         keepIfBest();
 
@@ -176,10 +177,15 @@ void NewtonRun::runStage(const Stage& stage, bool lastStage, bool slack) {
         }
         if (alpha < kSmallStep && steps_ > stageStart + 1) // a poor model: regularize more
             shift_ = std::max(shift_ * 10, kFailShift);
-        takeStep(alpha, mixed);
+        const double moved = takeStep(alpha, mixed);
         residual_ = evaluate(x_);
         if (lastStage)
             keepIfBest();
+        roundingSteps = moved <= kRoundingUnits ? roundingSteps + 1 : 0;
+        if (lastStage && roundingSteps >= kRoundingPatience && !(residual_ < stage.tolerance)) {
+            stopReason_ = "precision limit";
+            break;
+        }
         // A full step lowers the shift when its model was good: mixed or windy (no energy
         // measured), or the energy fell by at least kShiftDownRatio of the model's half slope.
         const bool goodModel = mixed || windy_ || -fullChange >= kShiftDownRatio * 0.5 * slope;

@@ -258,8 +258,22 @@ double NewtonRun::meritOf(const std::vector<Vec3>& at) {
     return std::isfinite(sum) ? sum : std::numeric_limits<double>::infinity();
 }
 
+namespace {
+
+/// How far a knot moved from `before` to `after`, in units in the last place of its largest
+/// coordinate (what rounding its position changes its bars' lengths by).
+double movedUnits(const Vec3& before, const Vec3& after) {
+    const double size = std::max({std::abs(before.x), std::abs(before.y), std::abs(before.z)});
+    const double unit = std::nextafter(size, HUGE_VAL) - size;
+    const Vec3 move = after - before;
+    return std::max({std::abs(move.x), std::abs(move.y), std::abs(move.z)}) / unit;
+}
+
+} // namespace
+
 /// x += alpha step; in the mixed stage the tension estimates follow the linearised lengths.
-void NewtonRun::takeStep(double alpha, bool mixed) {
+/// Returns the largest move of a knot in units in the last place of its coordinates.
+double NewtonRun::takeStep(double alpha, bool mixed) {
     if (mixed)
         forRange(system_.barCount(), [&](std::size_t begin, std::size_t end, std::size_t) {
             for (std::size_t b = begin; b < end; ++b) {
@@ -274,7 +288,13 @@ void NewtonRun::takeStep(double alpha, bool mixed) {
             }
         });
     for (std::uint32_t j : analysis_.freeKnots)
+        trial_[j] = x_[j]; // the line search is done with trial_
+    for (std::uint32_t j : analysis_.freeKnots)
         x_[j] += displacement(j, alpha);
+    double largest = 0;
+    for (std::uint32_t j : analysis_.freeKnots)
+        largest = std::max(largest, movedUnits(trial_[j], x_[j]));
+    return largest;
 }
 
 /// Keeps x_ as the last stage's best state when its residual is the lowest so far.

@@ -128,6 +128,15 @@ constexpr double kMaxExpansion = 4096;
 // After the exact Hessian was found indefinite, the projected one is used for this many
 // iterations before the exact one is tried again.
 constexpr int kExactPause = 3;
+// The last stage stops with "precision limit" (not converged) after kRoundingPatience iterations
+// in a row whose steps moved no knot by more than kRoundingUnits units in the last place of its
+// coordinates: the knots are then as near the equilibrium as doubles can place them. At the
+// rope's stiffness one unit in the last place of a coordinate between 64 and 128 m (1.4e-14 m)
+// stretches a 0.1 m bar by about a millionth of a knot's weight, so a net that far from the
+// origin cannot reach the usual tolerance (a sheet 100 m long stalled at 1.08e-6 and 1.6e-6 for
+// 700 and 3,000 iterations, up to the time limit).
+constexpr double kRoundingUnits = 4;
+constexpr int kRoundingPatience = 10;
 
 using Clock = std::chrono::steady_clock;
 
@@ -178,7 +187,7 @@ class NewtonRun {
     }
     double energyChange(double alpha);
     double meritOf(const std::vector<Vec3>& at);
-    void takeStep(double alpha, bool mixed);
+    double takeStep(double alpha, bool mixed);
     void hintedStart(double tolerance);
     bool isWarm(bool hinted) const;
     double axialToLoad() const;
