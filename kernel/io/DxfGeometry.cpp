@@ -12,7 +12,11 @@ namespace netsculpt::io {
 
 Ocs ocsOf(const Vec3& normal) {
     Ocs ocs;
-    const Vec3 n = normal / normal.norm();
+    // Scaled to its largest component first, so that the norm of a direction written with huge
+    // or tiny numbers (1e300, 1e-300) neither overflows nor underflows.
+    const double largest = std::max({std::abs(normal.x), std::abs(normal.y), std::abs(normal.z)});
+    const Vec3 scaled = normal / largest;
+    const Vec3 n = scaled / scaled.norm();
     if (n == Vec3{0, 0, 1})
         return ocs;
     constexpr double limit = 1.0 / 64.0;

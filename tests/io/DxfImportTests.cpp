@@ -291,3 +291,20 @@ TEST_CASE("DXF: a rounding-sized bulge keeps its segment straight") {
         }
     }
 }
+
+TEST_CASE("DXF: extrusion directions written with huge or tiny numbers") {
+    const auto dir = outputDir("dxf-extrusions");
+    ImportOptions metres;
+    metres.units = "m";
+    // The same mirrored circle as with extrusion (0, 0, -1): centre (-1, 2, -3) in the world.
+    for (const std::string z : {"-1", "-1e300", "-1e-300"}) {
+        INFO("extrusion z " << z);
+        writeText(dir / "mirrored.dxf", minimalDxf("0\nCIRCLE\n8\nM\n10\n1\n20\n2\n30\n3\n40\n0.5\n"
+                                                   "210\n0\n220\n0\n230\n" +
+                                                   z + "\n"));
+        const auto rails = importRailsFile(dir / "mirrored.dxf", metres);
+        REQUIRE(rails.size() == 1);
+        for (const Vec3& p : rails[0].curve.points)
+            CHECK(distance(p, {-1, 2, -3}) == Approx(0.5).epsilon(1e-12));
+    }
+}
