@@ -127,13 +127,7 @@ std::string encodeJournalLine(const JournalEntry& entry) {
 }
 
 JournalEntry decodeEntryJson(std::string_view text) {
-    Json j;
-    try {
-        j = Json::parse(text.begin(), text.end());
-    } catch (const Json::parse_error& e) {
-        throw UserError(std::string("bad JSON: ") + e.what());
-    }
-    return codec::decodeEntryObject(j);
+    return codec::decodeEntryObject(codec::parseJson(text));
 }
 
 JournalContents parseJournal(std::string_view text, const std::string& name) {
@@ -185,12 +179,7 @@ JournalContents parseJournal(std::string_view text, const std::string& name) {
         // only; an entry that is intact but wrong (unknown command, bad argument) never is.
         Json object;
         try {
-            const std::string_view json = checkedJson(body);
-            try {
-                object = Json::parse(json.begin(), json.end());
-            } catch (const Json::parse_error& e) {
-                throw UserError(std::string("bad JSON: ") + e.what());
-            }
+            object = codec::parseJson(checkedJson(body));
         } catch (const UserError& e) {
             if (last) {
                 out.warnings.push_back(where + ": dropped a garbled last entry (" + e.what() + ")");

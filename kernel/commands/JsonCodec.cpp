@@ -87,6 +87,21 @@ Colour readColour(ObjectReader& r, const char* key) {
     return Colour{v.x, v.y, v.z};
 }
 
+Json parseJson(std::string_view text) {
+    try {
+        return Json::parse(text.begin(), text.end());
+    } catch (const Json::parse_error& e) {
+        throw UserError(std::string("bad JSON: ") + e.what());
+    } catch (const Json::out_of_range& e) {
+        // nlohmann's "[json.exception.out_of_range.406] number overflow parsing '1e400'"
+        const std::string what = e.what();
+        const std::size_t detail = what.find("] ");
+        throw UserError("bad JSON: " +
+                        (detail == std::string::npos ? what : what.substr(detail + 2)) +
+                        " (numbers must lie within +-1.8e308)");
+    }
+}
+
 Json number(double value, const char* what) {
     if (!std::isfinite(value))
         throw UserError(std::string(what) + " must be a finite number to be journaled, got " + formatNumber(value));

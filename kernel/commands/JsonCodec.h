@@ -11,11 +11,16 @@
 #include <nlohmann/json.hpp>
 
 #include <set>
+#include <string_view>
 #include <string>
 
 namespace netsculpt::codec {
 
 using Json = nlohmann::ordered_json;
+
+/// Parses JSON text; UserError("bad JSON: ...") for malformed text and for a number that no
+/// double holds (1e400), so a damaged file is reported like any other damage.
+Json parseJson(std::string_view text);
 
 /// A finite double as JSON; UserError naming `what` for NaN or infinity.
 Json number(double value, const char* what);

@@ -60,10 +60,9 @@ SnapshotData decodeSnapshot(std::string_view text, const std::string& name) {
                         std::to_string(kSnapshotFormat) + ")");
     Json j;
     try {
-        const std::string_view body = text.substr(headerEnd + 1);
-        j = Json::parse(body.begin(), body.end());
-    } catch (const Json::parse_error& e) {
-        throw UserError(name + ": the snapshot is damaged (bad JSON: " + e.what() + ")");
+        j = codec::parseJson(text.substr(headerEnd + 1));
+    } catch (const UserError& e) {
+        throw UserError(name + ": the snapshot is damaged (" + e.what() + ")");
     }
     try {
         SnapshotData out;

@@ -52,6 +52,7 @@ constexpr int kPiecesPerSpan = 16; // initial table pieces per knot span, before
 constexpr int kMaxRefineDepth = 30;
 constexpr double kPieceTolerance = 1e-13; // relative disagreement of a piece and its halves
 constexpr double kMaxTurnCosine = 0.98;   // a table piece turns by at most ~11 degrees
+constexpr double kRoundingFloor = 2e-14;  // ~90 ulp of the control points' size: see appendPiece
 constexpr double kPeriodTolerance = 1e-9; // closed-spline knot periodicity, relative
 
 // ---- messages ----
@@ -379,17 +380,23 @@ bool turnsLittle(const CurveGeometry& g, double a, double b) {
 // Appends entries covering (a, b], halving until Gauss-Legendre on the piece agrees with its
 // two halves and the tangent turns little: the table is exact to ~1e-13 relative and dense
 // where the curve bends or changes speed, which nearestPosition's coarse search relies on.
-void appendPiece(CurveGeometry& g, double a, double b, double pieceLength, int depth) {
+// `noise` (per unit of u): what rounding leaves of a length where coordinates are large for the
+// curve (far from the origin, a spike); asking for more would halve pieces to kMaxRefineDepth.
+// A length beyond a double ends the halving too: checkLength then refuses the curve.
+void appendPiece(CurveGeometry& g, double a, double b, double pieceLength, double noise,
+                 int depth) {
     const double mid = 0.5 * (a + b);
     const double left = gaussLength(g, a, mid), right = gaussLength(g, mid, b);
-    const bool agrees = std::abs(left + right - pieceLength) <= kPieceTolerance * (left + right);
-    if (depth >= kMaxRefineDepth || (agrees && turnsLittle(g, a, b))) {
+    const bool agrees =
+        std::abs(left + right - pieceLength) <= kPieceTolerance * (left + right) + noise * (b - a);
+    if (depth >= kMaxRefineDepth || !std::isfinite(left + right) ||
+        (agrees && turnsLittle(g, a, b))) {
         appendTableEntry(g, mid, left);
         appendTableEntry(g, b, right);
         return;
     }
-    appendPiece(g, a, mid, left, depth + 1);
-    appendPiece(g, mid, b, right, depth + 1);
+    appendPiece(g, a, mid, left, noise, depth + 1);
+    appendPiece(g, mid, b, right, noise, depth + 1);
 }
 
 void buildSplineTable(CurveGeometry& g) {
@@ -398,15 +405,21 @@ void buildSplineTable(CurveGeometry& g) {
     g.tableU = {uMin};
     g.tableS = {0.0};
     g.tableP = {evaluateAt(g, uMin).point};
+    double weighted = 0, w = INFINITY; // the points de Boor's algorithm forms are |weighted| / w
+    for (const Homogeneous& c : g.control) {
+        weighted = std::max(weighted, c.weighted.norm());
+        w = std::min(w, c.w);
+    }
     for (std::size_t k = p; k < wrapped; ++k) {
         const double k0 = g.knots[k], k1 = g.knots[k + 1];
         if (!(k0 < k1))
             continue;
+        const double noise = kRoundingFloor * weighted / w * double(p) / (k1 - k0);
         for (int i = 0; i < kPiecesPerSpan; ++i) {
             const double a = k0 + (k1 - k0) * i / kPiecesPerSpan;
             const double b =
                 i + 1 == kPiecesPerSpan ? k1 : k0 + (k1 - k0) * (i + 1) / kPiecesPerSpan;
-            appendPiece(g, a, b, gaussLength(g, a, b), 0);
+            appendPiece(g, a, b, gaussLength(g, a, b), noise, 0);
         }
     }
 }

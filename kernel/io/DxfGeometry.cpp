@@ -12,7 +12,11 @@ namespace netsculpt::io {
 
 Ocs ocsOf(const Vec3& normal) {
     Ocs ocs;
-    const Vec3 n = normal / normal.norm();
+    // Scaled to its largest component first, so that the norm of a direction written with huge
+    // or tiny numbers (1e300, 1e-300) neither overflows nor underflows.
+    const double largest = std::max({std::abs(normal.x), std::abs(normal.y), std::abs(normal.z)});
+    const Vec3 scaled = normal / largest;
+    const Vec3 n = scaled / scaled.norm();
     if (n == Vec3{0, 0, 1})
         return ocs;
     constexpr double limit = 1.0 / 64.0;
@@ -43,15 +47,19 @@ void appendBulge(std::vector<Vec3>& out, const Vec3& p1, const Vec3& p2, double 
         out.push_back(p2);
         return;
     }
-    const double angle = 4 * std::atan(bulge);                 // included angle, signed
-    const double offset = 0.5 * chord / std::tan(0.5 * angle); // midpoint -> centre, signed
-    const double r = 0.5 * chord / std::abs(std::sin(0.5 * angle));
-    // The centre lies to the left of p1 -> p2 for a counter-clockwise arc of less than half a
-    // turn (offset > 0), to the right beyond half a turn (offset < 0), mirrored for clockwise.
-    const Vec3 mid{0.5 * (p1.x + p2.x), 0.5 * (p1.y + p2.y), p1.z};
-    const Vec3 centre{mid.x - dy / chord * offset, mid.y + dx / chord * offset, p1.z};
-    const double a0 = std::atan2(p1.y - centre.y, p1.x - centre.x);
-    appendArc(out, centre, r, a0, angle);
+    const double angle = 4 * std::atan(bulge); // included angle, signed
+    // Each sample is reached from p1 along its own chord, turned from p1 -> p2 by half the angle
+    // still to sweep, without the centre: for a nearly straight segment (a bulge of 1e-17, as
+    // CAD programs round) the centre lies chord / (4 bulge) away, and arc points taken from it
+    // would carry its rounding, more than the segment's own length.
+    const double heading = std::atan2(dy, dx);
+    const int n = std::max(2, int(std::ceil(std::abs(angle) / kArcStep)));
+    for (int i = 1; i <= n; ++i) {
+        const double swept = angle * (double(i) / n);
+        const double reach = chord * std::sin(0.5 * swept) / std::sin(0.5 * angle);
+        const double towards = heading + 0.5 * (swept - angle);
+        out.push_back({p1.x + reach * std::cos(towards), p1.y + reach * std::sin(towards), p1.z});
+    }
     out.back() = p2; // the end is the given vertex, not its rounding
 }
 

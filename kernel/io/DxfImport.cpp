@@ -211,7 +211,7 @@ class Collector final : public DL_CreationAdapter {
     Ocs extrusion(const DxfEntity& e) {
         const DL_Extrusion* x = getExtrusion();
         const Vec3 n{x->getDirection()[0], x->getDirection()[1], x->getDirection()[2]};
-        if (!n.isFinite() || n.squaredNorm() == 0)
+        if (!n.isFinite() || n == Vec3{0, 0, 0})
             fail(e, "has a zero extrusion direction (group codes 210/220/230)");
         return ocsOf(n);
     }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 // stb's implementations are compiled here with static linkage, so they cannot clash with another
 // copy elsewhere in a program (tinygltf is built without its own stb, see GltfExport.cpp).
@@ -27,6 +28,35 @@ void RasterCanvas::blend(int x, int y, const Rgb& colour, double alpha) {
     p[2] = float(p[2] + (colour.b - p[2]) * alpha);
 }
 
+namespace {
+
+/// The pixel index of coordinate `v`, clamped to [-1, limit] before the conversion, so that a
+/// coordinate far off the canvas (even past int's range) neither overflows nor widens a loop;
+/// NaN gives -1.
+int clampedPixel(double v, int limit) {
+    return v > -1 ? int(std::min(v, double(limit))) : -1;
+}
+
+/// The x range [lo, hi] that a stroke of `reach` around the segment (x0, y0)-(x1, y1) can touch
+/// within the pixel row [y, y + 1]; empty (lo > hi) when the stroke misses the row.
+std::pair<double, double> rowSpan(double x0, double y0, double x1, double y1, double reach, int y) {
+    const double dy = y1 - y0;
+    double t0 = 0, t1 = 1; // the part of the segment within `reach` of the row
+    if (dy != 0) {
+        t0 = std::clamp((y - reach - y0) / dy, 0.0, 1.0);
+        t1 = std::clamp((y + 1 + reach - y0) / dy, 0.0, 1.0);
+        if (t0 > t1)
+            std::swap(t0, t1);
+    }
+    const double yMin = std::min(y0, y1), yMax = std::max(y0, y1);
+    if (yMax < y - reach || yMin > y + 1 + reach)
+        return {1, 0};
+    const double xa = x0 + t0 * (x1 - x0), xb = x0 + t1 * (x1 - x0);
+    return {std::min(xa, xb) - reach, std::max(xa, xb) + reach};
+}
+
+} // namespace
+
 void RasterCanvas::line(double x0, double y0, double x1, double y1, const Rgb& colour,
                         double width) {
     if (!(std::isfinite(x0) && std::isfinite(y0) && std::isfinite(x1) && std::isfinite(y1)))
@@ -34,12 +64,17 @@ void RasterCanvas::line(double x0, double y0, double x1, double y1, const Rgb& c
     // Strokes thinner than a pixel are drawn one pixel wide and fainter (their ink per length).
     const double half = 0.5 * std::max(width, 1.0);
     const double opacity = std::min(width, 1.0);
-    const int xa = std::max(0, int(std::floor(std::min(x0, x1) - half - 1)));
-    const int xb = std::min(width_ - 1, int(std::ceil(std::max(x0, x1) + half + 1)));
-    const int ya = std::max(0, int(std::floor(std::min(y0, y1) - half - 1)));
-    const int yb = std::min(height_ - 1, int(std::ceil(std::max(y0, y1) + half + 1)));
+    const double reach = half + 1;
+    const int ya = std::max(0, clampedPixel(std::floor(std::min(y0, y1) - reach), height_));
+    const int yb =
+        std::min(height_ - 1, clampedPixel(std::ceil(std::max(y0, y1) + reach), height_));
     const double dx = x1 - x0, dy = y1 - y0, lengthSq = dx * dx + dy * dy;
-    for (int y = ya; y <= yb; ++y)
+    // Row by row, only the pixels near the stroke: the work follows the stroke's length on the
+    // canvas, not the area of its bounding box (a long diagonal would visit the whole canvas).
+    for (int y = ya; y <= yb; ++y) {
+        const auto [lo, hi] = rowSpan(x0, y0, x1, y1, reach, y);
+        const int xa = std::max(0, clampedPixel(std::floor(lo), width_));
+        const int xb = std::min(width_ - 1, clampedPixel(std::ceil(hi), width_));
         for (int x = xa; x <= xb; ++x) {
             const double px = x + 0.5 - x0, py = y + 0.5 - y0;
             const double t =
@@ -49,13 +84,14 @@ void RasterCanvas::line(double x0, double y0, double x1, double y1, const Rgb& c
             if (coverage > 0)
                 blend(x, y, colour, coverage * opacity);
         }
+    }
 }
 
 void RasterCanvas::rect(double x, double y, double w, double h, const Rgb& colour) {
-    const int xa = std::max(0, int(std::floor(x))),
-              xb = std::min(width_ - 1, int(std::ceil(x + w)) - 1);
-    const int ya = std::max(0, int(std::floor(y))),
-              yb = std::min(height_ - 1, int(std::ceil(y + h)) - 1);
+    const int xa = std::max(0, clampedPixel(std::floor(x), width_)),
+              xb = std::min(width_ - 1, clampedPixel(std::ceil(x + w), width_) - 1);
+    const int ya = std::max(0, clampedPixel(std::floor(y), height_)),
+              yb = std::min(height_ - 1, clampedPixel(std::ceil(y + h), height_) - 1);
     for (int py = ya; py <= yb; ++py) {
         const double cy = std::min(py + 1.0, y + h) - std::max(double(py), y);
         for (int px = xa; px <= xb; ++px) {
@@ -66,10 +102,10 @@ void RasterCanvas::rect(double x, double y, double w, double h, const Rgb& colou
 }
 
 void RasterCanvas::disc(double x, double y, double radius, const Rgb& colour) {
-    const int xa = std::max(0, int(std::floor(x - radius - 1))),
-              xb = std::min(width_ - 1, int(std::ceil(x + radius + 1)));
-    const int ya = std::max(0, int(std::floor(y - radius - 1))),
-              yb = std::min(height_ - 1, int(std::ceil(y + radius + 1)));
+    const int xa = std::max(0, clampedPixel(std::floor(x - radius - 1), width_)),
+              xb = std::min(width_ - 1, clampedPixel(std::ceil(x + radius + 1), width_));
+    const int ya = std::max(0, clampedPixel(std::floor(y - radius - 1), height_)),
+              yb = std::min(height_ - 1, clampedPixel(std::ceil(y + radius + 1), height_));
     for (int py = ya; py <= yb; ++py)
         for (int px = xa; px <= xb; ++px) {
             const double d = std::hypot(px + 0.5 - x, py + 0.5 - y);

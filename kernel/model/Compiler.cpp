@@ -105,6 +105,16 @@ Vec3 hangBetween(const Vec3& a, const Vec3& b, double fraction, double l, const 
     return along - Vec3{0, 0, h};
 }
 
+/// A knot hung so far below its parents that its height is beyond what a double holds (bar
+/// lengths from about 1e154 m): named here, before a NaN spacing shows up a row further down.
+void checkPlaced(const Vec3& knot, double l, const Piece& p, int row, int column) {
+    if (knot.isFinite()) return;
+    throw UserError(toString(p.id) + ": bar length " + formatNumber(l) +
+                    " m is too long: the knot at row " + std::to_string(row) + ", column " +
+                    std::to_string(column) + " would hang at z = " + formatNumber(knot.z) +
+                    " m, beyond the range of numbers");
+}
+
 class Builder {
   public:
     explicit Builder(const Sculpture& s) : s_(s), slots_(s) {}
@@ -228,15 +238,18 @@ class Builder {
         const auto& uppers = uppers_[k];
         auto& pos = out_.system.position;
         const Upper& u0 = uppers[0];
+        const KnotRef& ref = out_.system.refs[out_.system.refStart[k]];
+        const Piece& piece = s_.pieces.at(ref.piece);
         if (uppers.size() == 1) {
             pos[k] = pos[u0.knot] - Vec3{0, 0, u0.length};
+            checkPlaced(pos[k], u0.length, piece, ref.row, ref.column);
             return;
         }
         const Upper& u1 = uppers[1];
-        const KnotRef& ref = out_.system.refs[out_.system.refStart[k]];
         const double fraction = u0.fraction >= 0 ? u0.fraction : 0.5;
-        pos[k] = hangBetween(pos[u0.knot], pos[u1.knot], fraction, 0.5 * (u0.length + u1.length),
-                             s_.pieces.at(ref.piece), ref.row, ref.column);
+        const double l = 0.5 * (u0.length + u1.length);
+        pos[k] = hangBetween(pos[u0.knot], pos[u1.knot], fraction, l, piece, ref.row, ref.column);
+        checkPlaced(pos[k], l, piece, ref.row, ref.column);
     }
 
     /// Kahn's order over "hangs from": a knot is placed once every knot it hangs from is.

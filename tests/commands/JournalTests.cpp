@@ -247,6 +247,17 @@ TEST_CASE("a garbled last entry is dropped; a garbled entry elsewhere is an erro
         writeBytes(path, joinLines(edited));
         REQUIRE_THROWS_WITH(Document::open(path), Contains("line 4") && Contains("rowz"));
     }
+    SECTION("a number beyond a double's range, correctly signed, is an error naming the line") {
+        auto edited = lines;
+        std::string& l = edited[3];
+        l.replace(l.find("\"bar\":0.4"), 9, "\"bar\":1e400");
+        l = resign(l);
+        const std::string bytes = joinLines(edited);
+        writeBytes(path, bytes);
+        REQUIRE_THROWS_WITH(Document::open(path), Contains("line 4:") && Contains("bad JSON") &&
+                                                      Contains("1e400"));
+        CHECK(readBytes(path) == bytes);
+    }
     SECTION("a created id that does not match is an error naming the entry") {
         auto edited = lines;
         std::string& l = edited[3];
@@ -360,6 +371,18 @@ TEST_CASE("save writes the compacted history; saveSnapshot the model and shape")
         writeBytes(dir / "bad.nets", bytes);
         CHECK_THROWS_WITH(Document::load(dir / "bad.nets"), Contains("inconsistent"));
     }
+}
+
+TEST_CASE("a snapshot holding a number beyond a double's range is refused as damaged") {
+    TempDir dir;
+    journaledDocument(dir / "j.netj").saveSnapshot(dir / "snap.nets");
+    std::string bytes = readBytes(dir / "snap.nets");
+    const std::size_t first = bytes.find("\"positions\":[") + 13;
+    bytes.replace(first, bytes.find(',', first) - first, "-1e400");
+    writeBytes(dir / "snap.nets", bytes);
+    REQUIRE_THROWS_WITH(Document::load(dir / "snap.nets"),
+                        Contains("snap.nets: the snapshot is damaged (bad JSON") &&
+                            Contains("-1e400"));
 }
 
 TEST_CASE("a journal becomes the equivalent Lua script") {

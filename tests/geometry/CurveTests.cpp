@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -464,4 +465,42 @@ TEST_CASE("bad curve input throws UserError naming the value", "[curve][errors]"
         REQUIRE_THROWS_WITH(curve.samplePoints(0, 0.1, -1), Contains("sample count -1"));
         REQUIRE_THROWS_WITH(curve.nearestPosition({nan, 0, 0}), Contains("(nan, 0, 0)"));
     }
+}
+
+TEST_CASE("B-splines far from the origin, with a spike or beyond a double build at once",
+          "[curve][bspline]") {
+    // Site coordinates in metres, or one control point far out: rounding in the speed is then
+    // larger than 1e-13 of a table piece's length, which must not make every piece halve.
+    const std::vector<Vec3> near{{0, 0, 0}, {1, 2, 0},  {3, 2, 0.5},
+                                 {4, 0, 1}, {6, -1, 1}, {7, 1, 1}};
+    const auto seconds = [](auto build) {
+        const auto start = std::chrono::steady_clock::now();
+        build();
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
+    const Curve reference = Curve::build(bspline(near, 3));
+    std::vector<Vec3> far = near;
+    for (Vec3& p : far)
+        p += Vec3{4.5e5, 5.2e6, 300}; // UTM coordinates
+    CHECK(seconds([&] {
+              const Curve c = Curve::build(bspline(far, 3));
+              CHECK(c.length() == Approx(reference.length()).epsilon(1e-8));
+              for (double t = 0; t <= 1; t += 1.0 / 16)
+                  checkNear(c.pointAt(t) - Vec3{4.5e5, 5.2e6, 300}, reference.pointAt(t), 1e-6);
+          }) < 2);
+    std::vector<Vec3> spike = near;
+    spike[3].z = 1e5;
+    double polygon = 0;
+    for (double chord : chordLengths(spike))
+        polygon += chord;
+    CHECK(seconds([&] {
+              const Curve c = Curve::build(bspline(spike, 3));
+              CHECK(c.length() > 1e5);      // up 0.6 of the spike's height and down again
+              CHECK(c.length() <= polygon); // a B-spline is no longer than its control polygon
+          }) < 2);
+    spike[3].z = 1e200; // the length overflows: refused, at once
+    CHECK(seconds([&] {
+              CHECK_THROWS_WITH(Curve::build(bspline(spike, 3)),
+                                Contains("coordinates are too large"));
+          }) < 2);
 }

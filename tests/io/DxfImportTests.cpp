@@ -269,3 +269,42 @@ TEST_CASE("DXF: counts that disagree with the values, branches, text that is not
     for (const Vec3& p : mirrored[0].curve.points)
         CHECK(distance(p, {-1, 0, -2}) == Approx(1).epsilon(1e-12));
 }
+
+TEST_CASE("DXF: a rounding-sized bulge keeps its segment straight") {
+    // CAD programs write bulges like 3e-17 for straight segments; the arc's centre lies
+    // chord / (4 bulge) away, so the samples must not be taken from it.
+    const auto dir = outputDir("dxf-bulges");
+    ImportOptions metres;
+    metres.units = "m";
+    for (const std::string bulge : {"3e-17", "-1e-16", "1e-100"}) {
+        INFO("bulge " << bulge);
+        writeText(dir / "nearly_straight.dxf",
+                  minimalDxf("0\nLWPOLYLINE\n8\nR\n90\n3\n70\n0\n10\n0\n20\n0\n42\n" + bulge +
+                             "\n10\n1\n20\n0\n10\n1\n20\n1\n"));
+        const auto rails = importRailsFile(dir / "nearly_straight.dxf", metres);
+        REQUIRE(rails.size() == 1);
+        CHECK(length(rails[0]) == Approx(2).epsilon(1e-12));
+        for (const Vec3& p : rails[0].curve.points) { // on (0, 0) - (1, 0) - (1, 1)
+            CHECK(p.x >= 0);
+            CHECK(p.x <= 1);
+            CHECK((std::abs(p.y) < 1e-12 || p.x == 1));
+        }
+    }
+}
+
+TEST_CASE("DXF: extrusion directions written with huge or tiny numbers") {
+    const auto dir = outputDir("dxf-extrusions");
+    ImportOptions metres;
+    metres.units = "m";
+    // The same mirrored circle as with extrusion (0, 0, -1): centre (-1, 2, -3) in the world.
+    for (const std::string z : {"-1", "-1e300", "-1e-300"}) {
+        INFO("extrusion z " << z);
+        writeText(dir / "mirrored.dxf", minimalDxf("0\nCIRCLE\n8\nM\n10\n1\n20\n2\n30\n3\n40\n0.5\n"
+                                                   "210\n0\n220\n0\n230\n" +
+                                                   z + "\n"));
+        const auto rails = importRailsFile(dir / "mirrored.dxf", metres);
+        REQUIRE(rails.size() == 1);
+        for (const Vec3& p : rails[0].curve.points)
+            CHECK(distance(p, {-1, 2, -3}) == Approx(0.5).epsilon(1e-12));
+    }
+}

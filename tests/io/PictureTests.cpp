@@ -5,6 +5,7 @@
 
 #include "io/Canvas.h"
 #include "io/Export.h"
+#include "io/Raster.h"
 #include "io/Scene.h"
 #include "io/Views.h"
 
@@ -122,6 +123,25 @@ TEST_CASE("PNG: the asked size, not blank, the net where the view projects its k
     const io::ScreenPoint a = panel.project(position[pk.at(0, 3)]),
                           b = panel.project(position[pk.at(pk.rows - 1, 3)]);
     CHECK(b.y > a.y + 0.4 * front.height); // rows go down the picture
+}
+
+TEST_CASE("PNG strokes to points far off the canvas are drawn up to its edge") {
+    // A diverged shape can put knots 1e12 px away; the visible part of their bars still shows.
+    io::RasterCanvas canvas(64, 64);
+    canvas.line(10, 20, 1e12, 20, io::Rgb{}, 2);
+    canvas.line(40, 1e15, 40, -1e15, io::Rgb{}, 2);
+    canvas.line(-1e12, -1e12, 1e12, 1e12, io::Rgb{}, 2); // the diagonal
+    const Image image{64, 64, canvas.rgb8()};
+    const auto inked = [&](int x, int y) { return image.at(x, y).r < 0.5; };
+    CHECK(inked(10, 20));
+    CHECK(inked(30, 20));
+    CHECK(inked(63, 20));
+    CHECK(inked(40, 0));
+    CHECK(inked(40, 63));
+    CHECK(inked(5, 5));
+    CHECK(inked(60, 60));
+    CHECK_FALSE(inked(5, 20));
+    CHECK_FALSE(inked(20, 50));
 }
 
 TEST_CASE("PNG sheet of all four views: each panel holds a drawing") {

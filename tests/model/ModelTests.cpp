@@ -278,6 +278,11 @@ TEST_CASE("bad input is refused with a clear message and changes nothing") {
             "bar length 0.4 m at row 1");
     refused([&](Sculpture& m) { return attachToRail(m, {t.rail, 12, 0, 3, 0.4, 0, false}); }, "m / 2 =");
     refused([&](Sculpture& m) { setBarLength(m, t.piece, std::nullopt, -1); return 0; }, "got -1");
+    // A bar so long that the knot's height is beyond a double: named, not a NaN spacing.
+    refused([&](Sculpture& m) { setBarLength(m, t.piece, std::nullopt, 1e300); return 0; },
+            "bar length 1e+300 m is too long: the knot at row 1, column 0 would hang at z = -inf");
+    refused([&](Sculpture& m) { return attachToRail(m, {t.rail, 12, 0, 3, 1e200, 0, false}); },
+            "bar length 1e+200 m is too long");
     refused([&](Sculpture& m) { return attachToPiece(m, {PieceId(99), {1, 1}, 3, 0.5}); }, "piece 99");
     refused([&](Sculpture& m) { return split(m, t.piece, 12); }, "got 12");
     refused([&](Sculpture& m) { return split(m, t.piece, 0); }, "from 1 to 11");

@@ -70,6 +70,20 @@ TEST_CASE("Help, version and usage errors", "[cli]") {
     }
 }
 
+TEST_CASE("Numbers out of range are usage errors that say what is allowed", "[cli]") {
+    for (const auto& [bad, message] :
+         {std::pair{"relax d.netj --tolerance 0", "--tolerance: must be a number > 0, got 0"},
+          std::pair{"relax d.netj --max-seconds -5", "--max-seconds: must be a number > 0, got -5"},
+          std::pair{"run x.lua --max-memory -3", "--max-memory: must be a number >= 0, got -3"},
+          std::pair{"export d.netj x.obj --tube-radius -1",
+                    "--tube-radius: must be a number >= 0, got -1"}}) {
+        INFO(bad);
+        const Ran r = runCli(bad);
+        CHECK(r.exitCode == 2);
+        CHECK_THAT(r.output, StartsWith(std::string("netsculpt: error: ") + message));
+    }
+}
+
 TEST_CASE("run: exit code 0 with outputs and a journal, 1 with a one-line message", "[cli]") {
     const fs::path dir = freshFolder("run");
     const fs::path script = writeScript(dir, "small.lua", kSmallSculpture);

@@ -32,6 +32,21 @@ struct Options {
     std::string reportCsv;
 };
 
+/// A number above 0 (or at least 0): CLI11's PositiveNumber and NonNegativeNumber name their
+/// range instead, with its top written out in 309 digits ("not in range 0.000000 to 1797...").
+CLI::Validator numberAbove(bool zeroAllowed) {
+    const std::string allowed = zeroAllowed ? "a number >= 0" : "a number > 0";
+    return CLI::Validator(
+        [zeroAllowed, allowed](std::string& text) -> std::string {
+            double value = 0;
+            const bool number = CLI::detail::lexical_cast(text, value);
+            if (number && (value > 0 || (zeroAllowed && value == 0)))
+                return {};
+            return "must be " + allowed + ", got " + text;
+        },
+        zeroAllowed ? "NUMBER >= 0" : "NUMBER > 0");
+}
+
 void addRun(CLI::App& app, Options& o) {
     CLI::App* run = app.add_subcommand("run", "Run a sculpture script (sandboxed unless --unsafe)");
     run->add_option("script", o.run.script, "The Lua script")->required();
@@ -45,11 +60,11 @@ void addRun(CLI::App& app, Options& o) {
     run->add_option("--max-memory", o.run.maxMemoryMiB,
                     "Memory limit of the script's Lua state, MiB (0 = none)")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
+        ->check(numberAbove(true));
     run->add_option("--max-instructions", o.run.maxInstructions,
                     "Lua instruction budget (0 = none)")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
+        ->check(numberAbove(true));
     run->add_option("--backend", o.run.backend,
                     "Relax every doc:relax with this backend (overrides the script)")
         ->check(CLI::IsMember(relaxerNames()));
@@ -77,10 +92,10 @@ void addRelax(CLI::App& app, Options& o) {
         ->check(CLI::IsMember(relaxerNames()));
     relax->add_option("--tolerance", o.relax.tolerance, "Converged when max |F|/(m|g|) is below it")
         ->capture_default_str()
-        ->check(CLI::PositiveNumber);
+        ->check(numberAbove(false));
     relax->add_option("--max-seconds", o.relax.maxSeconds, "Wall-time limit, s")
         ->capture_default_str()
-        ->check(CLI::PositiveNumber);
+        ->check(numberAbove(false));
     relax->add_option("--max-steps", o.relax.maxSteps, "Step limit (-1 = none)")
         ->capture_default_str();
     relax->add_option("--out,-o", o.relax.out, "Output folder")->capture_default_str();
@@ -102,7 +117,7 @@ void addExport(CLI::App& app, Options& o) {
         ->add_option("--tube-radius", o.exporting.tubeRadius,
                      "obj/ply: bars as tubes of this radius, m")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
+        ->check(numberAbove(true));
     exporting->add_option("--width", o.exporting.width, "png width, pixels")
         ->capture_default_str()
         ->check(CLI::Range(16, 16384));
