@@ -72,7 +72,9 @@ struct LiveState {
     double stiffnessScale = 1;    ///< of the stage the positions come from
     std::int64_t steps = 0;       ///< integration steps of this run so far
     double seconds = 0;           ///< wall time of this run so far, s
-    std::string stopReason;       ///< when !running: "converged", "cancelled", "time limit", "diverged", "error"
+    /// when !running: "converged", "cancelled", "time limit", "diverged", "precision limit"
+    /// (RelaxResult::stopReason), "error"
+    std::string stopReason;
     std::string error;            ///< the UserError text when stopReason == "error"
 };
 
