@@ -8,6 +8,7 @@
 #include "physics/WarmStart.h"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <iostream>
 #include <optional>
@@ -19,6 +20,13 @@ namespace {
 
 /// Bytes of knot positions the undo history may keep (see Memo); past it the oldest go.
 constexpr std::size_t kPositionMemoBudget = std::size_t(256) << 20;
+
+/// Whether the forces of `system` at `positions` (one per knot) are finite: a damaged snapshot
+/// may hold finite coordinates so large that a bar's length or force overflows.
+bool forcesComputable(MassSpringSystem system, const std::vector<Vec3>& positions) {
+    system.position = positions;
+    return std::isfinite(residual(system));
+}
 
 /// The shape a state of the history had when the document left it. Only relaxed shapes need
 /// their positions: an unrelaxed state's shape is its fresh compile, rebuilt bit for bit.
@@ -290,7 +298,13 @@ Document Document::load(const std::filesystem::path& file, std::vector<std::stri
     if (built != data.hash || hashSculpture(data.model) != data.hash)
         throw UserError(file.string() + " is inconsistent: its history builds a sculpture different from its model "
                                         "(the file was edited or damaged)");
-    if (data.positions.size() == st.compiled.system.knotCount()) {
+    const bool fits = data.positions.size() == st.compiled.system.knotCount();
+    if (fits && !forcesComputable(st.compiled.system, data.positions)) {
+        report({file.string() + ": the saved shape's knots are too far apart for the forces "
+                                "between them to be computed (a coordinate beyond about 1e150 m); "
+                                "starting from the initial geometry"},
+               warnings);
+    } else if (fits) {
         st.compiled.system.position = data.positions;
         st.warm = data.warm;
         st.relaxed = data.relaxed;
