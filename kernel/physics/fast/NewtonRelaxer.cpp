@@ -176,7 +176,7 @@ void NewtonRun::runStage(const Stage& stage, bool lastStage, bool slack) {
             continue;
         }
         if (alpha < kSmallStep && steps_ > stageStart + 1) // a poor model: regularize more
-            shift_ = std::max(shift_ * 10, kFailShift);
+            shift_ = std::max(shift_ * 10, lastStage ? kLastSmallStepShift : kFailShift);
         const double moved = takeStep(alpha, mixed);
         residual_ = evaluate(x_);
         if (lastStage)
