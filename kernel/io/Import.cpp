@@ -117,9 +117,16 @@ double coordinate(const std::string& file, std::size_t line, std::string_view fi
 
 // ---- CSV ----
 
+/// `text` without the UTF-8 byte-order mark that spreadsheets write before a CSV's first field.
+std::string withoutByteOrderMark(std::string text) {
+    if (text.starts_with("\xEF\xBB\xBF"))
+        text.erase(0, 3);
+    return text;
+}
+
 std::vector<io::SourcedCurve> readCsv(const std::filesystem::path& path) {
     const std::string file = io::displayName(path);
-    const std::string text = io::readWholeFile(path);
+    const std::string text = withoutByteOrderMark(io::readWholeFile(path));
     checkText(file, text);
     int columnRail = -1, columnX = 0, columnY = 1, columnZ = 2;
     std::size_t expected = 3;

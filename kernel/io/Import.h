@@ -1,6 +1,7 @@
 #pragma once
 // Rails from files (DESIGN.md "Rails"; issue: rails from CAD files): DXF (through dxflib),
-// OBJ polylines ("l" elements) and CSV (x,y,z rows; one rail per file or a `rail` column).
+// OBJ polylines ("l" elements) and CSV (x,y,z rows; one rail per file or a `rail` column; a
+// spreadsheet's UTF-8 byte-order mark before the first field is skipped).
 //
 // Units. DXF files say their unit in the header variable $INSUNITS; it is converted to metres.
 // A DXF whose $INSUNITS is 0 (unitless) or missing is refused with a message asking for units,

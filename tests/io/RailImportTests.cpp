@@ -109,6 +109,15 @@ TEST_CASE("CSV rails: one rail per file, or grouped by a rail column") {
     mm.units = "mm";
     auto scaled = importText("mm.csv", "0,0,0\n1000,0,-250\n", mm);
     CHECK(scaled[0].curve.points[1] == Vec3{1, 0, -0.25});
+
+    // Spreadsheets save CSV as UTF-8 with a byte-order mark before the first field.
+    const std::string mark = "\xEF\xBB\xBF";
+    auto excel = importText("excel.csv", mark + "rail,x,y,z\nedge,0,0,3\nedge,2,0,3\n");
+    REQUIRE(excel.size() == 1);
+    CHECK(excel[0].name == "edge");
+    auto bare = importText("bare.csv", mark + "0,0,0\n1,0,0\n");
+    REQUIRE(bare.size() == 1);
+    CHECK(bare[0].curve.points[0] == Vec3{0, 0, 0});
 }
 
 TEST_CASE("OBJ rails: l elements, named by their object, closed when they end where they start") {
