@@ -191,3 +191,28 @@ TEST_CASE("studio: a Lua script's commands become the session's journal") {
             gears.push_back(toString(attach->args.gear));
     CHECK(gears == std::vector<std::string>{"3", "2", "1", "1/2", "1/3"});
 }
+
+TEST_CASE("studio: a relaxed snapshot opens as it is, without a soft preview") {
+    const fs::path out = fs::path(NETSCULPT_BINARY_DIR) / "tests" / "studio" / "snapshot";
+    fs::remove_all(out);
+    fs::create_directories(out);
+    Document demo;
+    buildDemoSculpture(demo);
+    REQUIRE(demo.relax().converged);
+    demo.saveSnapshot(out / "demo.nets");
+    const std::string command = "xvfb-run -a -s \"-screen 0 1280x800x24\" \"" +
+                                std::string(NETSCULPT_STUDIO_EXE) + "\" --open \"" +
+                                (out / "demo.nets").string() + "\" --journal \"" +
+                                (out / "out.netj").string() + "\" --exit-after-frames 20 > \"" +
+                                (out / "log.txt").string() + "\" 2>&1";
+    const int status = std::system(command.c_str());
+    std::ifstream log(out / "log.txt");
+    std::stringstream text;
+    text << log.rdbuf();
+    INFO(text.str());
+    REQUIRE(status == 0);
+    // No frame was drawn while relaxing: the live relaxation had nothing to do.
+    CHECK_THAT(text.str(), Catch::Matchers::Contains("while relaxing (0 frames"));
+    // The session journal holds the snapshot's history.
+    CHECK(readJournal(out / "out.netj").entries.size() == 7);
+}

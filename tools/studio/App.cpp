@@ -335,7 +335,9 @@ void App::syncLive() {
         positionsDirty_ = true;
         reportDirty_ = true;
         residualHistory_.clear();
-        if (liveEnabled_) live_->preview(doc.compiled().system, shownVersion_);
+        // A relaxed shape (an opened snapshot, an undo back to one) is already the equilibrium
+        // at the material's stiffness: a soft preview would only sag it and refine it back.
+        if (liveEnabled_ && !doc.isRelaxed()) live_->preview(doc.compiled().system, shownVersion_);
     }
     if (const auto state = live_->latest(); state && state->sequence != seenSequence_) {
         seenSequence_ = state->sequence;

@@ -6,6 +6,7 @@
 #include "Screenshot.h"
 
 #include "commands/Journal.h"
+#include "commands/Snapshot.h"
 #include "interaction/DemoScenes.h"
 #include "io/Export.h"
 #include "io/Import.h"
@@ -13,6 +14,7 @@
 #include "model/Error.h"
 
 #include <cstdio>
+#include <fstream>
 
 namespace netsculpt::studio {
 
@@ -27,6 +29,15 @@ template <typename F> bool attempt(App& app, const std::string& what, F&& action
         app.notify(what + ": " + e.what(), true);
         return false;
     }
+}
+
+/// Whether `file` is a snapshot (a relaxed shape saved by `netsculpt relax` or saveSnapshot)
+/// rather than a journal: its first bytes say so.
+bool isSnapshot(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    std::string start(kSnapshotMagic.size(), '\0');
+    in.read(start.data(), std::streamsize(start.size()));
+    return in && start == kSnapshotMagic;
 }
 
 bool hasEntries(const std::filesystem::path& journal) {
@@ -49,9 +60,10 @@ void App::buildInitialDocument() {
     sessionPath_ = options_.journal.value_or(defaultSessionJournal());
     if (options_.open) {
         std::vector<std::string> warnings;
-        *doc_ = Document::open(*options_.open, &warnings);
+        *doc_ = Document::load(*options_.open, &warnings);
         for (const std::string& w : warnings) notify(w, false);
-        currentPath_ = *options_.open;
+        if (!isSnapshot(*options_.open)) // a snapshot is not overwritten by a journal on save
+            currentPath_ = *options_.open;
     } else if (options_.demoKnots > 0) {
         buildLargeDemoSculpture(*doc_, options_.demoKnots);
         doc_->markClean();
@@ -114,11 +126,13 @@ void App::newDocument() {
 bool App::openJournal(const std::filesystem::path& path) {
     return attempt(*this, "open " + path.string(), [&] {
         std::vector<std::string> warnings;
-        Document opened = Document::open(path, &warnings);
+        Document opened = Document::load(path, &warnings);
         replaceDocument(std::move(opened));
         attachSession(); // journaling goes on in the session; the opened file changes only on save
         doc_->markClean();
-        currentPath_ = path;
+        currentPath_.reset();
+        if (!isSnapshot(path)) // a snapshot is not overwritten by a journal on save
+            currentPath_ = path;
         for (const std::string& w : warnings) notify(w, false);
         notify("opened " + path.string(), false);
     });
@@ -219,7 +233,8 @@ const nlohmann::json* App::report() {
             const double preview = previewScaleShown();
             report_ = preview < 1 ? previewReport() : buildReport(*doc_);
             reportValid_ = true;
-            const bool relaxed = current && liveState_->converged && liveState_->stiffnessScale == 1;
+            const bool relaxed = doc_->isRelaxed() ||
+                                 (current && liveState_->converged && liveState_->stiffnessScale == 1);
             reportBasis_ = relaxed ? ReportBasis::Relaxed : preview < 1 ? ReportBasis::Preview : ReportBasis::NotRelaxed;
             reportPreviewScale_ = preview;
         } catch (const std::exception& e) {

@@ -16,7 +16,7 @@ namespace {
 const char* actionTitle(FileAction a) {
     switch (a) {
     case FileAction::New: return "New sculpture";
-    case FileAction::Open: return "Open journal";
+    case FileAction::Open: return "Open journal or snapshot (.netj, .nets)";
     case FileAction::Save: return "Save journal";
     case FileAction::SaveAs: return "Save journal as";
     case FileAction::ImportRails: return "Import rails (.dxf, .obj, .csv)";
@@ -201,6 +201,8 @@ void Panels::drawSolver(App& app) {
             else ImGui::Text("%s: %s", phase, s->stopReason.c_str());
             ImGui::Text("residual %.3g at stiffness x%.3g", s->residual, s->stiffnessScale);
             ImGui::Text("%lld steps, %.2f s", static_cast<long long>(s->steps), s->seconds);
+        } else if (app.document().isRelaxed()) {
+            ImGui::TextDisabled("relaxed at the material's stiffness");
         } else {
             ImGui::TextDisabled(live ? "waiting for the first shape" : "showing the initial geometry");
         }

@@ -22,7 +22,7 @@ int parseInt(const std::string& text, const std::string& option, int lo, int hi)
 } // namespace
 
 std::string studioUsage() {
-    return "usage: netsculpt-studio [--script FILE.lua | --open JOURNAL | --demo | --demo-knots N]\n"
+    return "usage: netsculpt-studio [--script FILE.lua | --open FILE | --demo | --demo-knots N]\n"
            "                        [--play EVENTS] [--screenshot OUT.png] [--exit-after-frames N]\n"
            "                        [--journal PATH] [--size WxH] [--no-relax] [--settle SECONDS]\n"
            "                        [--no-vsync] [--samples N] [--colour piece|tension]\n"
