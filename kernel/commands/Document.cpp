@@ -289,7 +289,7 @@ Document Document::open(const std::filesystem::path& journal, std::vector<std::s
 
 Document Document::load(const std::filesystem::path& file, std::vector<std::string>* warnings) {
     const std::string text = readWhole(file);
-    if (text.compare(0, kSnapshotMagic.size(), kSnapshotMagic) != 0) return open(file, warnings);
+    if (!isSnapshotText(text)) return open(file, warnings);
     const SnapshotData data = decodeSnapshot(text, file.string());
     Document doc;
     State& st = *doc.state_;

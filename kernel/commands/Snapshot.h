@@ -19,6 +19,9 @@ namespace netsculpt {
 inline constexpr int kSnapshotFormat = 1;
 inline constexpr std::string_view kSnapshotMagic = "netsculpt-snapshot";
 
+/// Whether a file's text (or its first bytes) is a snapshot's rather than a journal's.
+inline bool isSnapshotText(std::string_view text) { return text.starts_with(kSnapshotMagic); }
+
 struct SnapshotData {
     Sculpture model;
     std::uint64_t hash = 0;

@@ -39,16 +39,20 @@ Image readPng(const fs::path& path) {
     return image;
 }
 
-/// Runs the studio on the demo with the add_rows events; returns the folder of its outputs.
-fs::path runStudio(const std::string& name, const std::string& extra) {
+/// An empty output folder for the run `name`.
+fs::path outputFolder(const std::string& name) {
     const fs::path out = fs::path(NETSCULPT_BINARY_DIR) / "tests" / "studio" / name;
     fs::remove_all(out);
     fs::create_directories(out);
-    const fs::path events = fs::path(NETSCULPT_SOURCE_DIR) / "tests/data/studio/add_rows.events";
-    const std::string command = "xvfb-run -a -s \"-screen 0 1280x800x24\" \"" + std::string(NETSCULPT_STUDIO_EXE) +
-                                "\" --demo --play \"" + events.string() + "\" --screenshot \"" +
-                                (out / "out.png").string() + "\" --journal \"" + (out / "out.netj").string() +
-                                "\" --exit-after-frames 40 --size 1280x800 " + extra + " > \"" +
+    return out;
+}
+
+/// Runs the studio under Xvfb with `arguments`, its output in `out`/log.txt, journaling to
+/// `out`/out.netj; requires that it exits cleanly and returns what it printed.
+std::string runUnderXvfb(const fs::path& out, const std::string& arguments) {
+    const std::string command = "xvfb-run -a -s \"-screen 0 1280x800x24\" \"" +
+                                std::string(NETSCULPT_STUDIO_EXE) + "\" " + arguments +
+                                " --journal \"" + (out / "out.netj").string() + "\" > \"" +
                                 (out / "log.txt").string() + "\" 2>&1";
     const int status = std::system(command.c_str());
     std::ifstream log(out / "log.txt");
@@ -56,6 +60,16 @@ fs::path runStudio(const std::string& name, const std::string& extra) {
     text << log.rdbuf();
     INFO(command << "\n" << text.str());
     REQUIRE(status == 0);
+    return text.str();
+}
+
+/// Runs the studio on the demo with the add_rows events; returns the folder of its outputs.
+fs::path runStudio(const std::string& name, const std::string& extra) {
+    const fs::path out = outputFolder(name);
+    const fs::path events = fs::path(NETSCULPT_SOURCE_DIR) / "tests/data/studio/add_rows.events";
+    runUnderXvfb(out, "--demo --play \"" + events.string() + "\" --screenshot \"" +
+                          (out / "out.png").string() +
+                          "\" --exit-after-frames 40 --size 1280x800 " + extra);
     REQUIRE(fs::exists(out / "out.png"));
     REQUIRE(fs::exists(out / "out.netj"));
     return out;
@@ -175,14 +189,9 @@ TEST_CASE("studio: without relaxation the net is drawn exactly where the camera 
 }
 
 TEST_CASE("studio: a Lua script's commands become the session's journal") {
-    const fs::path out = fs::path(NETSCULPT_BINARY_DIR) / "tests" / "studio" / "script";
-    fs::remove_all(out);
-    fs::create_directories(out);
+    const fs::path out = outputFolder("script");
     const fs::path script = fs::path(NETSCULPT_SOURCE_DIR) / "scripts/paper/fig07_gears.lua";
-    const std::string command = "xvfb-run -a -s \"-screen 0 1280x800x24\" \"" + std::string(NETSCULPT_STUDIO_EXE) +
-                                "\" --script \"" + script.string() + "\" --journal \"" + (out / "out.netj").string() +
-                                "\" --exit-after-frames 5 --no-relax > \"" + (out / "log.txt").string() + "\" 2>&1";
-    REQUIRE(std::system(command.c_str()) == 0);
+    runUnderXvfb(out, "--script \"" + script.string() + "\" --exit-after-frames 5 --no-relax");
     // fig07 hangs one child below each of five tubes of 24 columns, through gears 3, 2, 1, 1/2, 1/3.
     const JournalContents journal = readJournal(out / "out.netj");
     std::vector<std::string> gears;
@@ -193,26 +202,15 @@ TEST_CASE("studio: a Lua script's commands become the session's journal") {
 }
 
 TEST_CASE("studio: a relaxed snapshot opens as it is, without a soft preview") {
-    const fs::path out = fs::path(NETSCULPT_BINARY_DIR) / "tests" / "studio" / "snapshot";
-    fs::remove_all(out);
-    fs::create_directories(out);
+    const fs::path out = outputFolder("snapshot");
     Document demo;
     buildDemoSculpture(demo);
     REQUIRE(demo.relax().converged);
     demo.saveSnapshot(out / "demo.nets");
-    const std::string command = "xvfb-run -a -s \"-screen 0 1280x800x24\" \"" +
-                                std::string(NETSCULPT_STUDIO_EXE) + "\" --open \"" +
-                                (out / "demo.nets").string() + "\" --journal \"" +
-                                (out / "out.netj").string() + "\" --exit-after-frames 20 > \"" +
-                                (out / "log.txt").string() + "\" 2>&1";
-    const int status = std::system(command.c_str());
-    std::ifstream log(out / "log.txt");
-    std::stringstream text;
-    text << log.rdbuf();
-    INFO(text.str());
-    REQUIRE(status == 0);
+    const std::string log =
+        runUnderXvfb(out, "--open \"" + (out / "demo.nets").string() + "\" --exit-after-frames 20");
     // No frame was drawn while relaxing: the live relaxation had nothing to do.
-    CHECK_THAT(text.str(), Catch::Matchers::Contains("while relaxing (0 frames"));
+    CHECK_THAT(log, Catch::Matchers::Contains("while relaxing (0 frames"));
     // The session journal holds the snapshot's history.
     CHECK(readJournal(out / "out.netj").entries.size() == 7);
 }

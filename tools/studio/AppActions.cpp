@@ -37,7 +37,7 @@ bool isSnapshot(const std::filesystem::path& file) {
     std::ifstream in(file, std::ios::binary);
     std::string start(kSnapshotMagic.size(), '\0');
     in.read(start.data(), std::streamsize(start.size()));
-    return in && start == kSnapshotMagic;
+    return in && isSnapshotText(start);
 }
 
 bool hasEntries(const std::filesystem::path& journal) {
