@@ -1,6 +1,7 @@
 #include "physics/Forces.h"
 
 #include "model/Error.h"
+#include "physics/SpringForces.h"
 #include "physics/ThreadPool.h"
 
 #include <algorithm>
@@ -9,11 +10,9 @@
 #include <limits>
 #include <string>
 
-#if defined(__AVX2__)
-#include <immintrin.h>
-#endif
-
 namespace netsculpt {
+
+using namespace springs;
 
 namespace {
 
@@ -44,122 +43,6 @@ void checkSizes(const MassSpringSystem& system) {
         badSystem("too many knots or bars (" + std::to_string(knots) + ", " + std::to_string(bars) +
                   ")");
 }
-
-/// |d|^2 as the rest of the kernel computes it (Vec3::norm() as g++ contracts it where FMA is
-/// available): the same bits here, in the SIMD lanes below and in a caller's own distance().
-inline double squaredLength(const Vec3& d) {
-#if defined(__FMA__)
-    return std::fma(d.z, d.z, std::fma(d.x, d.x, d.y * d.y));
-#else
-    return d.x * d.x + d.y * d.y + d.z * d.z;
-#endif
-}
-
-/// The spring force of a bar on its end a (Eq. 3): c d, d = p_b - p_a, c = t / |d| with the
-/// tension t = s k (|d| - l_eq) (k = kTension if stretched, else kCompression), and c = 0 for a
-/// bar of zero length. The SIMD code below performs exactly these IEEE operations in this order.
-struct SpringForce {
-    Vec3 force;
-    double tension; ///< N
-};
-inline SpringForce springForce(const Vec3& pa, const Vec3& pb, double restLength, double kTension,
-                               double kCompression, double scale) {
-    const Vec3 d{pb.x - pa.x, pb.y - pa.y, pb.z - pa.z};
-    const double length = std::sqrt(squaredLength(d));
-    const double extension = length - restLength;
-    const double t = (extension > 0 ? kTension : kCompression) * scale * extension;
-    const double c = length > 0 ? t / length : 0.0;
-    return {Vec3{d.x * c, d.y * c, d.z * c}, t};
-}
-
-/// The Vec3 at a byte offset into an array of them (bars keep their ends as byte offsets: an
-/// address is then one addition, in scalar and in SIMD code alike).
-inline const Vec3& at(const Vec3* array, std::uint32_t offset) {
-    return *reinterpret_cast<const Vec3*>(reinterpret_cast<const char*>(array) + offset);
-}
-inline Vec3& at(Vec3* array, std::uint32_t offset) {
-    return *reinterpret_cast<Vec3*>(reinterpret_cast<char*>(array) + offset);
-}
-
-inline void addTo(Vec3& total, const Vec3& f) {
-    total.x += f.x;
-    total.y += f.y;
-    total.z += f.z;
-}
-inline void subtractFrom(Vec3& total, const Vec3& f) {
-    total.x -= f.x;
-    total.y -= f.y;
-    total.z -= f.z;
-}
-
-#if defined(__AVX2__)
-/// springForce() of four bars at once, as (x, y) and z of each bar's force on its end a.
-struct SpringForces4 {
-    __m128d xy[4];
-    __m128d z[4];
-    __m256d tension;
-};
-/// (x, y, z, next x) of a position, or (x, y, z, 0) if Masked (for the array's last one).
-template <bool Masked> inline __m256d loadVec3(const Vec3& v) {
-    const Vec3* p = &v;
-    if constexpr (Masked)
-        return _mm256_maskload_pd(&p->x, _mm256_set_epi64x(0, -1, -1, -1));
-    else
-        return _mm256_loadu_pd(&p->x);
-}
-/// Masked: some bar may end at the last knot (a plain 32-byte load would read past the array).
-template <bool Masked>
-inline SpringForces4 springForces4(const Vec3* positions, const std::uint32_t* endOffsets,
-                                   const double* restLength, const double* kTension,
-                                   const double* kCompression, __m256d scale) {
-    __m256d d[4]; // (x, y, z, _) of p_b - p_a; the fourth lane is never used
-    for (int i = 0; i < 4; ++i)
-        d[i] = _mm256_sub_pd(loadVec3<Masked>(at(positions, endOffsets[2 * i + 1])),
-                             loadVec3<Masked>(at(positions, endOffsets[2 * i])));
-    // Transpose to x, y, z of the four bars.
-    const __m256d t0 = _mm256_unpacklo_pd(d[0], d[1]), t1 = _mm256_unpackhi_pd(d[0], d[1]);
-    const __m256d t2 = _mm256_unpacklo_pd(d[2], d[3]), t3 = _mm256_unpackhi_pd(d[2], d[3]);
-    const __m256d x = _mm256_permute2f128_pd(t0, t2, 0x20),
-                  z = _mm256_permute2f128_pd(t0, t2, 0x31);
-    const __m256d y = _mm256_permute2f128_pd(t1, t3, 0x20);
-    const __m256d zero = _mm256_setzero_pd();
-#if defined(__FMA__)
-    const __m256d squared = _mm256_fmadd_pd(z, z, _mm256_fmadd_pd(x, x, _mm256_mul_pd(y, y)));
-#else
-    const __m256d squared =
-        _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(x, x), _mm256_mul_pd(y, y)), _mm256_mul_pd(z, z));
-#endif
-    const __m256d length = _mm256_sqrt_pd(squared);
-    const __m256d extension = _mm256_sub_pd(length, _mm256_loadu_pd(restLength));
-    const __m256d k = _mm256_blendv_pd(_mm256_loadu_pd(kCompression), _mm256_loadu_pd(kTension),
-                                       _mm256_cmp_pd(extension, zero, _CMP_GT_OQ));
-    SpringForces4 out;
-    out.tension = _mm256_mul_pd(_mm256_mul_pd(k, scale), extension);
-    const __m256d c =
-        _mm256_and_pd(_mm256_div_pd(out.tension, length), _mm256_cmp_pd(length, zero, _CMP_GT_OQ));
-    const __m256d fx = _mm256_mul_pd(x, c), fy = _mm256_mul_pd(y, c), fz = _mm256_mul_pd(z, c);
-    const __m256d xy02 = _mm256_unpacklo_pd(fx, fy), xy13 = _mm256_unpackhi_pd(fx, fy);
-    out.xy[0] = _mm256_castpd256_pd128(xy02);
-    out.xy[1] = _mm256_castpd256_pd128(xy13);
-    out.xy[2] = _mm256_extractf128_pd(xy02, 1);
-    out.xy[3] = _mm256_extractf128_pd(xy13, 1);
-    const __m128d z01 = _mm256_castpd256_pd128(fz), z23 = _mm256_extractf128_pd(fz, 1);
-    out.z[0] = z01;
-    out.z[1] = _mm_unpackhi_pd(z01, z01);
-    out.z[2] = z23;
-    out.z[3] = _mm_unpackhi_pd(z23, z23);
-    return out;
-}
-inline void addTo(Vec3& total, __m128d xy, __m128d z) {
-    // f + total: the same bits as total + f, and the load folds into the addition.
-    _mm_storeu_pd(&total.x, _mm_add_pd(xy, _mm_loadu_pd(&total.x)));
-    _mm_store_sd(&total.z, _mm_add_sd(z, _mm_load_sd(&total.z)));
-}
-inline void subtractFrom(Vec3& total, __m128d xy, __m128d z) {
-    _mm_storeu_pd(&total.x, _mm_sub_pd(_mm_loadu_pd(&total.x), xy));
-    _mm_store_sd(&total.z, _mm_sub_sd(_mm_load_sd(&total.z), z));
-}
-#endif
 
 } // namespace
 
@@ -392,25 +275,38 @@ void ForceField::streamBars(const Vec3* positions, Vec3* force, std::size_t begi
     auto mine = [&](std::uint32_t offset) { return !Checked || offset - firstOffset < offsetSpan; };
     std::size_t b = begin;
 #if defined(__AVX2__)
-    // Four bars at a time, added to their knots right away: the additions of one group then
-    // overlap the square roots and divisions of the next (computing many groups ahead is slower).
-    const __m256d scale = _mm256_set1_pd(scale_);
-    const std::size_t unmaskedEnd = unmaskedEnd_;
-    for (; b + 4 <= end; b += 4) {
-        const SpringForces4 f = b + 4 <= unmaskedEnd
-                                    ? springForces4<false>(positions, ends + 2 * b, restLength + b,
-                                                           kTension + b, kCompression + b, scale)
-                                    : springForces4<true>(positions, ends + 2 * b, restLength + b,
-                                                          kTension + b, kCompression + b, scale);
-        startKnots(b + 3);
-        for (std::size_t i = 0; i < 4; ++i) {
-            const std::uint32_t ea = ends[2 * (b + i)], eb = ends[2 * (b + i) + 1];
+    // Eight or four bars at a time, added to their knots right away: the additions of one group
+    // then overlap the square roots and divisions of the next (computing many groups ahead is
+    // slower).
+    auto addGroup = [&](const auto& f, std::size_t first, std::size_t width) {
+        startKnots(first + width - 1);
+        for (std::size_t i = 0; i < width; ++i) {
+            const std::uint32_t ea = ends[2 * (first + i)], eb = ends[2 * (first + i) + 1];
             if (mine(ea))
                 addTo(at(force, ea), f.xy[i], f.z[i]);
             if (mine(eb))
                 subtractFrom(at(force, eb), f.xy[i], f.z[i]);
         }
-    }
+    };
+    const std::size_t unmaskedEnd = unmaskedEnd_;
+#if defined(__AVX512F__) && defined(__FMA__)
+    const __m512d scale8 = _mm512_set1_pd(scale_);
+    for (; b + 8 <= end; b += 8)
+        addGroup(b + 8 <= unmaskedEnd
+                     ? springForces8<false>(positions, ends + 2 * b, restLength + b, kTension + b,
+                                            kCompression + b, scale8)
+                     : springForces8<true>(positions, ends + 2 * b, restLength + b, kTension + b,
+                                           kCompression + b, scale8),
+                 b, 8);
+#endif
+    const __m256d scale = _mm256_set1_pd(scale_);
+    for (; b + 4 <= end; b += 4)
+        addGroup(b + 4 <= unmaskedEnd
+                     ? springForces4<false>(positions, ends + 2 * b, restLength + b, kTension + b,
+                                            kCompression + b, scale)
+                     : springForces4<true>(positions, ends + 2 * b, restLength + b, kTension + b,
+                                           kCompression + b, scale),
+                 b, 4);
 #endif
     for (; b < end; ++b) {
         startKnots(b);
