@@ -132,7 +132,9 @@ MassSpringSystem softEquilibrium(const Document& doc, const std::vector<Vec3>& p
     scaleStiffness(soft, previewScale(soft, LiveRelaxOptions{}.previewStiffnessScale));
     RelaxOptions options;
     options.tolerance = tolerance;
-    REQUIRE(relaxFast(soft, options).converged);
+    const RelaxResult result = relaxFast(soft, options);
+    INFO("stopped: " << result.stopReason << ", residual " << result.residual);
+    REQUIRE(result.converged);
     return soft;
 }
 
@@ -163,9 +165,10 @@ TEST_CASE("live relaxer: after a drag step the preview re-converges in a few New
     CHECK(lengthened->converged);
     CHECK(lengthened->residual < options.previewTolerance);
     CHECK(lengthened->steps <= 3);
-    // The same equilibrium as from the Eq. 2 geometry: both taken on to 1e-10 meet.
-    const MassSpringSystem cold = softEquilibrium(scene.doc, {}, 1e-10);
-    const MassSpringSystem warm = softEquilibrium(scene.doc, lengthened->positions, 1e-10);
+    // The same equilibrium as from the Eq. 2 geometry: both taken on to 1e-9 meet (1e-10 is
+    // this net's precision floor: a run there may stop at "precision limit", 1.02e-10).
+    const MassSpringSystem cold = softEquilibrium(scene.doc, {}, 1e-9);
+    const MassSpringSystem warm = softEquilibrium(scene.doc, lengthened->positions, 1e-9);
     CHECK(maxDistance(warm.position, cold.position) < 1e-8);
     CHECK(maxDistance(lengthened->positions, cold.position) < 1e-3);
 
@@ -176,8 +179,8 @@ TEST_CASE("live relaxer: after a drag step the preview re-converges in a few New
     INFO("second bar-length step " << again->steps);
     CHECK(again->converged);
     CHECK(again->steps == 1);
-    const MassSpringSystem coldAgain = softEquilibrium(scene.doc, {}, 1e-10);
-    const MassSpringSystem warmAgain = softEquilibrium(scene.doc, again->positions, 1e-10);
+    const MassSpringSystem coldAgain = softEquilibrium(scene.doc, {}, 1e-9);
+    const MassSpringSystem warmAgain = softEquilibrium(scene.doc, again->positions, 1e-9);
     CHECK(maxDistance(warmAgain.position, coldAgain.position) < 1e-8);
 
     // One more row: new knots and bars; the rows above lead the new one.
@@ -186,8 +189,8 @@ TEST_CASE("live relaxer: after a drag step the preview re-converges in a few New
     INFO("row step " << grown->steps);
     CHECK(grown->converged);
     CHECK(grown->steps <= 4);
-    const MassSpringSystem coldLonger = softEquilibrium(scene.doc, {}, 1e-10);
-    const MassSpringSystem warmLonger = softEquilibrium(scene.doc, grown->positions, 1e-10);
+    const MassSpringSystem coldLonger = softEquilibrium(scene.doc, {}, 1e-9);
+    const MassSpringSystem warmLonger = softEquilibrium(scene.doc, grown->positions, 1e-9);
     CHECK(maxDistance(warmLonger.position, coldLonger.position) < 1e-8);
 }
 
