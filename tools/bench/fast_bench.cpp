@@ -13,7 +13,8 @@
 // For each: wall seconds, Newton iterations (soft stage + final), factorizations, residual,
 // then the RK4 path under a time cap (residual reached) and the ratio of their times. Then the
 // force pass (Eq. 3) at 20k and 100k knots: ns per bar with 1 and 2 threads, against the memory
-// floor (about 52 bytes per bar at the streaming bandwidth measured with as many threads).
+// floor (about 52 bytes per bar at the streaming bandwidth measured with as many threads). Then
+// the sparse Cholesky factorization and solve alone (scene "cholesky", CholeskyBench.h).
 //
 //   netsculpt-bench-fast                 everything (a few minutes, RK4 caps dominate)
 //   netsculpt-bench-fast --quick         20x40 nets, short RK4 caps (CI smoke)
@@ -24,6 +25,7 @@
 //   --trace        print the fast path's residual after every Newton iteration
 
 #include "BenchScenes.h"
+#include "CholeskyBench.h"
 #include "InstructionSet.h"
 
 #include "physics/Forces.h"
@@ -293,12 +295,12 @@ int main(int argc, char** argv) {
                                             {"slack-100x200", Shape::Slack, 100, 200, 0.5},
                                             {"tube-100x1000", Shape::Tube, 100, 1000, 5.0},
                                             {"slack-100x1000", Shape::Slack, 100, 1000, 5.0}};
-    const bool known = only.empty() || only == "force" ||
+    const bool known = only.empty() || only == "force" || only == "cholesky" ||
                        std::any_of(scenes.begin(), scenes.end(),
                                    [&](const Scene& scene) { return scene.name == only; });
     if (!known) {
         std::fprintf(stderr, "netsculpt-bench-fast: no scene \"%s\"; the scenes are tube-100x200, "
-                             "slack-100x200, tube-100x1000, slack-100x1000, force, and "
+                             "slack-100x200, tube-100x1000, slack-100x1000, force, cholesky, and "
                              "tube-RxC, slack-RxC or banner-RxC for R and C from 2 to 1000\n",
                      only.c_str());
         return 2;
@@ -316,6 +318,8 @@ int main(int argc, char** argv) {
                 runScene(scene, settings);
         if (only.empty() || only == "force")
             forcePass(quick);
+        if (only.empty() || only == "cholesky")
+            bench::choleskyTimes(quick);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "netsculpt-bench-fast: %s\n", e.what());
         return 1;
