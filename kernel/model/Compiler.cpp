@@ -1,5 +1,6 @@
 #include "model/Compiler.h"
 
+#include "model/BarPairs.h"
 #include "model/Error.h"
 
 #include <algorithm>
@@ -7,7 +8,6 @@
 #include <cmath>
 #include <numeric>
 #include <unordered_map>
-#include <unordered_set>
 
 namespace netsculpt {
 
@@ -282,14 +282,13 @@ class Builder {
     }
 
     /// A bar from knot `a` up to knot `b` (b is in the row above, or a shared knot of a gear).
-    void addBar(std::unordered_set<std::uint64_t>& seen, const Piece& p, std::uint32_t a, std::uint32_t b, double l,
+    void addBar(BarPairs& seen, const Piece& p, std::uint32_t a, std::uint32_t b, double l,
                 double fraction = -1) {
         if (a == b) return;
         auto& uppers = uppers_[a];
         if (uppers.size() < 2 && std::none_of(uppers.begin(), uppers.end(), [&](const Upper& u) { return u.knot == b; }))
             uppers.push_back({b, l, fraction});
-        const std::uint64_t key = (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
-        if (!seen.insert(key).second) return; // a seam's shared column: the bar already exists
+        if (!seen.insert(a, b)) return; // a seam's shared column: the bar already exists
         MassSpringSystem& sys = out_.system;
         const double ks = p.material.stiffness / l;
         sys.barA.push_back(a);
@@ -302,8 +301,7 @@ class Builder {
     }
 
     void buildBars() {
-        std::unordered_set<std::uint64_t> seen;
-        seen.reserve(2 * out_.system.knotCount());
+        BarPairs seen(out_.system.knotCount());
         for (PieceId id : slots_.order()) {
             const Piece& p = s_.pieces.at(id);
             const PieceKnots& pk = out_.pieces.at(id);

@@ -3,6 +3,7 @@
 
 #include "TestSculptures.h"
 
+#include "model/BarPairs.h"
 #include "model/Error.h"
 
 #include <catch2/catch.hpp>
@@ -322,4 +323,21 @@ TEST_CASE("a tube connected to a second rail has its last row fixed on that rail
     CHECK(k0.z == Approx(-3.0));
     CHECK(c.system.hold[c.knotOf(p, 7, 4)].rail == bottom);
     CHECK(c.system.hold[c.knotOf(p, 7, 4)].t == Approx(0.5));
+}
+
+TEST_CASE("the compiler's bar pairs tell a bar met twice, in either order, past a knot's slots") {
+    BarPairs pairs(20);
+    // Knot 3's bars to eleven higher knots: the first four in its slots, the rest in the set.
+    for (std::uint32_t k = 4; k < 15; ++k)
+        CHECK(pairs.insert(3, k));
+    for (std::uint32_t k = 4; k < 15; ++k) {
+        INFO("knot " << k);
+        CHECK_FALSE(pairs.insert(3, k));
+        CHECK_FALSE(pairs.insert(k, 3));
+    }
+    CHECK(pairs.insert(4, 3 + 12)); // another knot's pair with the same higher end
+    CHECK(pairs.insert(2, 3));      // knot 3 as the higher end
+    CHECK_FALSE(pairs.insert(3, 2));
+    CHECK(pairs.insert(0, 19));
+    CHECK_FALSE(pairs.insert(19, 0));
 }

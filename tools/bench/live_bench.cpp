@@ -20,6 +20,7 @@
 
 #include "commands/Document.h"
 #include "interaction/DemoScenes.h"
+#include "interaction/HeapSettings.h"
 #include "interaction/LiveRelaxer.h"
 #include "InstructionSet.h"
 
@@ -180,6 +181,7 @@ void runDrag(const char* name, Document& doc, LiveRelaxer& live, const Publicati
 } // namespace
 
 int main(int argc, char** argv) {
+    keepFreedMemoryForReuse(); // as the studio does
     int knots = 20000, steps = 20;
     std::string only;
     LiveRelaxOptions options; // the studio's

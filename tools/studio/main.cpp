@@ -3,6 +3,7 @@
 #include "App.h"
 #include "StudioOptions.h"
 
+#include "interaction/HeapSettings.h"
 #include "model/Error.h"
 
 #include <cstdio>
@@ -10,6 +11,7 @@
 
 int main(int argc, char** argv) {
     using namespace netsculpt;
+    keepFreedMemoryForReuse();
     studio::StudioOptions options;
     try {
         options = studio::parseStudioOptions(std::vector<std::string>(argv + 1, argv + argc));
