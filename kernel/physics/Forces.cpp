@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <type_traits>
 
 namespace netsculpt {
 
@@ -288,25 +289,26 @@ void ForceField::streamBars(const Vec3* positions, Vec3* force, std::size_t begi
                 subtractFrom(at(force, eb), f.xy[i], f.z[i]);
         }
     };
+    // Groups of `width` bars while they last; `forces(masked)` computes the group at b.
     const std::size_t unmaskedEnd = unmaskedEnd_;
+    auto groupsOf = [&](std::size_t width, const auto& forces) {
+        for (; b + width <= end; b += width)
+            addGroup(b + width <= unmaskedEnd ? forces(std::false_type{})
+                                              : forces(std::true_type{}),
+                     b, width);
+    };
 #if defined(__AVX512F__) && defined(__FMA__)
     const __m512d scale8 = _mm512_set1_pd(scale_);
-    for (; b + 8 <= end; b += 8)
-        addGroup(b + 8 <= unmaskedEnd
-                     ? springForces8<false>(positions, ends + 2 * b, restLength + b, kTension + b,
-                                            kCompression + b, scale8)
-                     : springForces8<true>(positions, ends + 2 * b, restLength + b, kTension + b,
-                                           kCompression + b, scale8),
-                 b, 8);
+    groupsOf(8, [&](auto masked) {
+        return springForces8<masked()>(positions, ends + 2 * b, restLength + b, kTension + b,
+                                       kCompression + b, scale8);
+    });
 #endif
     const __m256d scale = _mm256_set1_pd(scale_);
-    for (; b + 4 <= end; b += 4)
-        addGroup(b + 4 <= unmaskedEnd
-                     ? springForces4<false>(positions, ends + 2 * b, restLength + b, kTension + b,
-                                            kCompression + b, scale)
-                     : springForces4<true>(positions, ends + 2 * b, restLength + b, kTension + b,
-                                           kCompression + b, scale),
-                 b, 4);
+    groupsOf(4, [&](auto masked) {
+        return springForces4<masked()>(positions, ends + 2 * b, restLength + b, kTension + b,
+                                       kCompression + b, scale);
+    });
 #endif
     for (; b < end; ++b) {
         startKnots(b);

@@ -133,6 +133,15 @@ struct SpringForces8 {
     __m128d xy[8];
     __m128d z[8];
 };
+/// Bars 2 Lane and 2 Lane + 1 of the 128-bit lane Lane of the force vectors (Lane 1-3).
+template <int Lane>
+inline void takeLanes(SpringForces8& out, __m512d xyEven, __m512d xyOdd, __m512d zEven,
+                      __m512d zOdd) {
+    out.xy[2 * Lane] = _mm512_extractf64x2_pd(xyEven, Lane);
+    out.xy[2 * Lane + 1] = _mm512_extractf64x2_pd(xyOdd, Lane);
+    out.z[2 * Lane] = _mm512_extractf64x2_pd(zEven, Lane);
+    out.z[2 * Lane + 1] = _mm512_extractf64x2_pd(zOdd, Lane);
+}
 /// (x, y, z, _) of p_b - p_a of bar i in the low half of a lane pair, of bar i + 4 in the high.
 template <bool Masked>
 inline __m512d barVectors(const Vec3* positions, const std::uint32_t* endOffsets, int i) {
@@ -177,18 +186,9 @@ inline SpringForces8 springForces8(const Vec3* positions, const std::uint32_t* e
     out.xy[1] = _mm512_castpd512_pd128(xyOdd);
     out.z[0] = _mm512_castpd512_pd128(fz);
     out.z[1] = _mm512_castpd512_pd128(zOdd);
-    out.xy[2] = _mm512_extractf64x2_pd(xyEven, 1);
-    out.xy[3] = _mm512_extractf64x2_pd(xyOdd, 1);
-    out.z[2] = _mm512_extractf64x2_pd(fz, 1);
-    out.z[3] = _mm512_extractf64x2_pd(zOdd, 1);
-    out.xy[4] = _mm512_extractf64x2_pd(xyEven, 2);
-    out.xy[5] = _mm512_extractf64x2_pd(xyOdd, 2);
-    out.z[4] = _mm512_extractf64x2_pd(fz, 2);
-    out.z[5] = _mm512_extractf64x2_pd(zOdd, 2);
-    out.xy[6] = _mm512_extractf64x2_pd(xyEven, 3);
-    out.xy[7] = _mm512_extractf64x2_pd(xyOdd, 3);
-    out.z[6] = _mm512_extractf64x2_pd(fz, 3);
-    out.z[7] = _mm512_extractf64x2_pd(zOdd, 3);
+    takeLanes<1>(out, xyEven, xyOdd, fz, zOdd);
+    takeLanes<2>(out, xyEven, xyOdd, fz, zOdd);
+    takeLanes<3>(out, xyEven, xyOdd, fz, zOdd);
     return out;
 }
 #endif
