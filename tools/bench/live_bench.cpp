@@ -20,7 +20,7 @@
 
 #include "commands/Document.h"
 #include "interaction/DemoScenes.h"
-#include "interaction/HeapSettings.h"
+#include "commands/HeapSettings.h"
 #include "interaction/LiveRelaxer.h"
 #include "InstructionSet.h"
 

@@ -2,6 +2,7 @@
 // ("netsculpt: error: ..."), 2 usage error.
 
 #include "Commands.h"
+#include "commands/HeapSettings.h"
 
 #include "model/Error.h"
 #include "physics/Backends.h"
@@ -169,6 +170,7 @@ int dispatch(const CLI::App& app, const Options& o) {
 } // namespace
 
 int main(int argc, char** argv) {
+    netsculpt::keepFreedMemoryForReuse();
     CLI::App app{"netsculpt: design knotted-rope net sculptures hung from rails", "netsculpt"};
     Options o;
     app.set_version_flag("--version", "netsculpt " NETSCULPT_VERSION);

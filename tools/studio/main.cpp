@@ -3,7 +3,7 @@
 #include "App.h"
 #include "StudioOptions.h"
 
-#include "interaction/HeapSettings.h"
+#include "commands/HeapSettings.h"
 #include "model/Error.h"
 
 #include <cstdio>

@@ -1,4 +1,4 @@
-#include "interaction/HeapSettings.h"
+#include "commands/HeapSettings.h"
 
 #include <cstdlib> // defines __GLIBC__ with glibc
 
