@@ -287,8 +287,11 @@ double NewtonRun::takeStep(double alpha, bool mixed) {
                 tension_[b] = stiffness(b, extension) * extension;
             }
         });
+    // The positions before the step into trial_ (the line search is done with it) in a loop of
+    // their own: with the copy and the measure in the step's loop, g++ contracts the step's
+    // arithmetic differently and every run's last bits (and erratic iteration counts) move.
     for (std::uint32_t j : analysis_.freeKnots)
-        trial_[j] = x_[j]; // the line search is done with trial_
+        trial_[j] = x_[j];
     for (std::uint32_t j : analysis_.freeKnots)
         x_[j] += displacement(j, alpha);
     double largest = 0;
