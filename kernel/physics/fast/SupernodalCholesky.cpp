@@ -464,6 +464,19 @@ void SupernodalCholesky::planSchedule(const std::vector<std::uint32_t>& parent) 
 
 }
 
+/// The worker's product scratch for n doubles, at a 64-byte boundary. Eigen computes a small
+/// product coefficient by coefficient, with vector lanes from the first aligned entry on and
+/// scalar code before it; the two differ in their last bits where the compiler does not
+/// contract the scalar code's multiply-adds (unoptimized builds), so an address that moved
+/// with the heap's state made a factor's bits depend on what ran before.
+double* SupernodalCholesky::alignedProduct(Worker& worker, std::int64_t n) {
+    constexpr std::size_t kAlign = 64 / sizeof(double);
+    if (worker.product.size() < static_cast<std::size_t>(n) + kAlign)
+        worker.product.resize(static_cast<std::size_t>(n) + kAlign);
+    const auto address = reinterpret_cast<std::uintptr_t>(worker.product.data());
+    return worker.product.data() + (kAlign - address / sizeof(double) % kAlign) % kAlign;
+}
+
 void SupernodalCholesky::applyUpdates(std::size_t s, std::int64_t columnBegin,
                                       std::int64_t columnEnd, const std::int64_t* position,
                                       Worker& worker) {
@@ -507,9 +520,7 @@ void SupernodalCholesky::applyUpdates(std::size_t s, std::int64_t columnBegin,
                 b = k;
             }
         }
-        if (worker.product.size() < static_cast<std::size_t>(m * (b - a)))
-            worker.product.resize(static_cast<std::size_t>(m * (b - a)));
-        MatrixMap product(worker.product.data(), m, b - a);
+        MatrixMap product(alignedProduct(worker, m * (b - a)), m, b - a);
         product.noalias() = source.middleRows(update.begin, m) *
                             source.middleRows(update.begin + a, b - a).transpose();
         // Each entry of the product is subtracted from its place in the block once, in the same

@@ -101,6 +101,7 @@ class SupernodalCholesky {
     /// of its descendants, in increasing descendant order. position: row -> position in s.
     void applyUpdates(std::size_t s, std::int64_t columnBegin, std::int64_t columnEnd,
                       const std::int64_t* position, Worker& worker);
+    static double* alignedProduct(Worker& worker, std::int64_t n);
     void runSchedule(std::span<const double> values, double shift, ThreadPool* pool);
 
     bool analysed_ = false;
