@@ -105,8 +105,9 @@ Vec3 hangBetween(const Vec3& a, const Vec3& b, double fraction, double l, const 
     return along - Vec3{0, 0, h};
 }
 
-/// A knot hung so far below its parents that its height is beyond what a double holds (bar
-/// lengths from about 1e154 m): named here, before a NaN spacing shows up a row further down.
+/// A knot hung so far below its parents that its height is beyond what a double holds: named
+/// here, before a NaN spacing shows up a row further down. Bar lengths are at most
+/// kMaxBarLength, so this guards against rails placed at the edge of the doubles' range.
 void checkPlaced(const Vec3& knot, double l, const Piece& p, int row, int column) {
     if (knot.isFinite()) return;
     throw UserError(toString(p.id) + ": bar length " + formatNumber(l) +

@@ -26,8 +26,9 @@ void checkRows(int rows) {
 }
 
 void checkLength(double length, const char* what) {
-    if (!(length > 0) || !std::isfinite(length))
-        throw UserError(std::string(what) + " must be a positive number of metres, got " + formatNumber(length));
+    if (!(length > 0 && length <= kMaxBarLength))
+        throw UserError(std::string(what) + " must be a number of metres above 0 and at most " +
+                        formatNumber(kMaxBarLength) + ", got " + formatNumber(length));
 }
 
 void checkPosition(double t) {
@@ -318,9 +319,7 @@ void removePiece(Sculpture& s, PieceId id) {
 }
 
 void setGravity(Sculpture& s, const Vec3& gravity) {
-    if (!gravity.isFinite() || gravity.squaredNorm() == 0)
-        throw UserError("gravity must be a finite, non-zero vector, got (" + formatNumber(gravity.x) + ", " +
-                        formatNumber(gravity.y) + ", " + formatNumber(gravity.z) + ") m/s^2");
+    checkGravity(gravity);
     s.gravity = gravity;
 }
 

@@ -81,23 +81,23 @@ void checkPiece(const Sculpture& s, const Piece& p) {
                         ", got " + std::to_string(p.columns));
     for (int i : {p.bar.from, p.bar.to, 0, (p.bar.axis == BarAxis::Column ? p.columns : p.rows) - 1}) {
         const double l = p.bar.at(i);
-        if (!(l > 0) || !std::isfinite(l))
-            throw UserError(toString(p.id) + ": bar length must be a positive number of metres, got " +
-                            formatNumber(l));
+        if (!(l > 0 && l <= kMaxBarLength))
+            throw UserError(toString(p.id) + ": bar length must be a number of metres above 0 and at most " +
+                            formatNumber(kMaxBarLength) + ", got " + formatNumber(l));
     }
     const Material& m = p.material;
-    if (!(m.stiffness > 0) || !std::isfinite(m.stiffness))
-        throw UserError(toString(p.id) + ": stiffness (EA) must be a positive number of newtons, got " +
-                        formatNumber(m.stiffness));
+    if (!(m.stiffness > 0 && m.stiffness <= kMaxStiffness))
+        throw UserError(toString(p.id) + ": stiffness (EA) must be a number of newtons above 0 and at most " +
+                        formatNumber(kMaxStiffness) + ", got " + formatNumber(m.stiffness));
     if (!(m.compressionRatio >= 0 && m.compressionRatio <= 1))
         throw UserError(toString(p.id) + ": compression_ratio must be between 0 and 1, got " +
                         formatNumber(m.compressionRatio));
-    if (!(m.knotMass >= 0) || !std::isfinite(m.knotMass))
-        throw UserError(toString(p.id) + ": knot_mass must be a number of kilograms >= 0, got " +
-                        formatNumber(m.knotMass));
-    if (!(m.linearDensity >= 0) || !std::isfinite(m.linearDensity))
-        throw UserError(toString(p.id) + ": linear_density must be a number of kg/m >= 0, got " +
-                        formatNumber(m.linearDensity));
+    if (!(m.knotMass >= 0 && m.knotMass <= kMaxKnotMass))
+        throw UserError(toString(p.id) + ": knot_mass must be a number of kilograms from 0 to " +
+                        formatNumber(kMaxKnotMass) + ", got " + formatNumber(m.knotMass));
+    if (!(m.linearDensity >= 0 && m.linearDensity <= kMaxLinearDensity))
+        throw UserError(toString(p.id) + ": linear_density must be a number of kg/m from 0 to " +
+                        formatNumber(kMaxLinearDensity) + ", got " + formatNumber(m.linearDensity));
     if (!(m.knotMass > 0 || m.linearDensity > 0))
         throw UserError(toString(p.id) + ": knot_mass and linear_density are both 0; a net must weigh something");
     if (p.onRail()) checkRailEdge(s, p, p.railTop(), "top");
@@ -256,9 +256,16 @@ double topSpacing(const Sculpture& s, PieceId id) {
     return topSpacing(s, edge.parents.front()) / edge.gear.value();
 }
 
+void checkGravity(const Vec3& g) {
+    const double magnitude = std::hypot(g.x, g.y, g.z);
+    if (!(magnitude >= kMinGravity && magnitude <= kMaxGravity))
+        throw UserError("gravity must be a vector of magnitude " + formatNumber(kMinGravity) + " to " +
+                        formatNumber(kMaxGravity) + " m/s^2, got (" + formatNumber(g.x) + ", " +
+                        formatNumber(g.y) + ", " + formatNumber(g.z) + ") m/s^2");
+}
+
 void refreshAndValidate(Sculpture& s) {
-    if (!s.gravity.isFinite() || s.gravity.squaredNorm() == 0)
-        throw UserError("gravity must be a finite, non-zero vector");
+    checkGravity(s.gravity);
     double knots = 0;
     for (PieceId id : s.topologicalOrder()) {
         Piece& p = s.pieces.at(id);

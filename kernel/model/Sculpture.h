@@ -60,6 +60,20 @@ int gearedColumns(int sourceKnots, bool ringClosed, Gear gear);
 /// parent's spacing divided by the gear). Used for connect_to_rail on open rails.
 double topSpacing(const Sculpture& s, PieceId id);
 
+/// The physical ranges a sculpture's numbers must lie in: wide enough for any net a net maker
+/// can tie (on Earth or in a scaled test), narrow enough that weights, forces and lengths stay
+/// far from overflow and underflow (a gravity of 1e300 made every load in the report infinite).
+inline constexpr double kMaxBarLength = 1000.0;    // m
+inline constexpr double kMaxStiffness = 1e12;      // N (EA; a 10 cm steel bar is about 1.6e9)
+inline constexpr double kMaxKnotMass = 1000.0;     // kg
+inline constexpr double kMaxLinearDensity = 1000.0; // kg/m
+inline constexpr double kMinGravity = 1e-3;        // m/s^2, magnitude
+inline constexpr double kMaxGravity = 1e3;         // m/s^2, magnitude (about 100 g)
+
+/// Throws UserError naming the vector and the allowed range unless `gravity` is finite with a
+/// magnitude from kMinGravity to kMaxGravity.
+void checkGravity(const Vec3& gravity);
+
 /// Recomputes what follows from the joins (whole children's column counts and closedness,
 /// bar profile ranges) in topological order, then checks every invariant. Throws UserError on
 /// the first violation; callers work on a copy, so the original sculpture is untouched.

@@ -488,6 +488,7 @@ TEST_CASE("every invalid input is refused with its value, leaving model, history
         {RemoveRailCommand{RailId(77)}, "rail 77"},
         {SetGravityCommand{Vec3{0, 0, 0}}, "gravity"},
         {SetGravityCommand{Vec3{0, nan, -9.81}}, "nan"},
+        {SetGravityCommand{Vec3{0, 0, -1e300}}, "-1e+300"},
         {AddRailCommand{"one point", onePoint}, "rail"},
         {AddRailCommand{"nan", nanPoint}, "nan"},
         {ImportRailsCommand{"empty.dxf", {}}, "empty.dxf"},

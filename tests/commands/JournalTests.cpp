@@ -116,6 +116,9 @@ TEST_CASE("the journal is a header and one checksummed JSON line per entry") {
 }
 
 TEST_CASE("numbers in the journal read back bit for bit") {
+    // Gravity carries numbers of every exponent down to the smallest subnormal in components
+    // that leave its magnitude in range; rail points carry large ones (up to 1e150, so that a
+    // polyline's length stays finite).
     TempDir dir;
     const auto path = dir / "numbers.netj";
     std::mt19937_64 random(12345);
@@ -125,18 +128,31 @@ TEST_CASE("numbers in the journal read back bit for bit") {
     doc.attachJournal(path);
     std::vector<Vec3> written;
     for (int i = 0; i < 300; ++i) {
-        Vec3 g{uniform(random) * std::ldexp(1.0, exponent(random) / 4), uniform(random),
-               -std::abs(uniform(random)) * std::pow(10.0, exponent(random) / 10)};
+        Vec3 g{uniform(random) * std::ldexp(1.0, exponent(random) / 4 - 75), uniform(random),
+               -(1.5 + uniform(random)) * std::pow(10.0, exponent(random) / 150)};
         if (i == 0) g = {-0.0, 0.0, -9.81};
-        if (i == 1) g = {5e-324, 1.7976931348623157e308, -2.2250738585072014e-308};
+        if (i == 1) g = {5e-324, -2.2250738585072014e-308, -999.9999999999999};
         if (i == 2) g = {0.1 + 0.2, 1.0 / 3.0, -2.0 / 3.0};
         doc.execute(SetGravityCommand{g});
         written.push_back(g);
     }
+    std::vector<Vec3> far;
+    for (int i = 0; i < 30; ++i) {
+        const double scale = std::pow(10.0, exponent(random) / 2);
+        far.push_back({uniform(random) * scale, uniform(random) * scale, uniform(random)});
+        if (i == 0) far.back() = {1e150, -1.2345678901234567e149, 1.7976931348623157e-150};
+        CurveSpec line;
+        line.points = {{0, 0, 0}, far.back()};
+        doc.execute(AddRailCommand{"far " + std::to_string(i), line});
+    }
     const auto entries = entriesOf(path);
-    REQUIRE(entries.size() == written.size());
+    REQUIRE(entries.size() == written.size() + far.size());
     for (std::size_t i = 0; i < written.size(); ++i)
         CHECK(sameBits(std::get<SetGravityCommand>(entries[i].command).gravity, written[i]));
+    for (std::size_t i = 0; i < far.size(); ++i) {
+        const auto& rail = std::get<AddRailCommand>(entries[written.size() + i].command);
+        CHECK(sameBits(rail.curve.points.back(), far[i]));
+    }
     CHECK(Document::open(path).hash() == doc.hash());
 }
 

@@ -279,11 +279,18 @@ TEST_CASE("bad input is refused with a clear message and changes nothing") {
             "bar length 0.4 m at row 1");
     refused([&](Sculpture& m) { return attachToRail(m, {t.rail, 12, 0, 3, 0.4, 0, false}); }, "m / 2 =");
     refused([&](Sculpture& m) { setBarLength(m, t.piece, std::nullopt, -1); return 0; }, "got -1");
-    // A bar so long that the knot's height is beyond a double: named, not a NaN spacing.
+    // Numbers beyond the physical ranges (a bar of 1e300 m would hang its knots at z = -inf).
     refused([&](Sculpture& m) { setBarLength(m, t.piece, std::nullopt, 1e300); return 0; },
-            "bar length 1e+300 m is too long: the knot at row 1, column 0 would hang at z = -inf");
+            "bar length must be a number of metres above 0 and at most 1000, got 1e+300");
+    refused([&](Sculpture& m) { setBarLength(m, t.piece, std::nullopt, 1000.5); return 0; },
+            "got 1000.5");
     refused([&](Sculpture& m) { return attachToRail(m, {t.rail, 12, 0, 3, 1e200, 0, false}); },
-            "bar length 1e+200 m is too long");
+            "at most 1000, got 1e+200");
+    refused([&](Sculpture& m) { setGravity(m, {0, 0, -1e300}); return 0; },
+            "gravity must be a vector of magnitude 0.001 to 1000 m/s^2, got (0, 0, -1e+300)");
+    refused([&](Sculpture& m) { setGravity(m, {0, 0, -1e-300}); return 0; }, "-1e-300");
+    refused([&](Sculpture& m) { setGravity(m, {-600, 0, -900}); return 0; }, "(-600, 0, -900)");
+    refused([&](Sculpture& m) { setGravity(m, {0, 0, 0}); return 0; }, "(0, 0, 0)");
     refused([&](Sculpture& m) { return attachToPiece(m, {PieceId(99), {1, 1}, 3, 0.5}); }, "piece 99");
     refused([&](Sculpture& m) { return split(m, t.piece, 12); }, "got 12");
     refused([&](Sculpture& m) { return split(m, t.piece, 0); }, "from 1 to 11");
@@ -302,6 +309,15 @@ TEST_CASE("bad input is refused with a clear message and changes nothing") {
     Material soft;
     soft.stiffness = 0;
     refused([&](Sculpture& m) { setMaterial(m, t.piece, soft); return 0; }, "stiffness");
+    Material steel;
+    steel.stiffness = 2e12;
+    refused([&](Sculpture& m) { setMaterial(m, t.piece, steel); return 0; }, "at most 1e+12, got 2e+12");
+    Material heavy;
+    heavy.knotMass = 1001;
+    refused([&](Sculpture& m) { setMaterial(m, t.piece, heavy); return 0; }, "knot_mass");
+    Material dense;
+    dense.linearDensity = 1e300;
+    refused([&](Sculpture& m) { setMaterial(m, t.piece, dense); return 0; }, "from 0 to 1000, got 1e+300");
     refused([&](Sculpture& m) { setGear(m, t.piece, {2, 1}); return 0; }, "rail");
     refused([&](Sculpture& m) { disconnect(m, t.piece); return 0; }, "not connected");
     // A removed piece is named as removed.
