@@ -73,6 +73,7 @@
 
 #include "physics/Relaxer.h"
 
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <string_view>
@@ -120,8 +121,21 @@ class FastRelaxer final : public Relaxer {
     const NewtonStatistics& statistics() const { return statistics_; }
 
   private:
+    using TimePoint = std::chrono::steady_clock::time_point;
+    /// A system whose free knots are all connected: Newton's method as described above.
+    RelaxResult relaxConnected(MassSpringSystem& system, const RelaxOptions& options,
+                               TimePoint start);
+    /// A system of several independent parts (physics/fast/Components.h): each relaxed as a
+    /// system of its own by a relaxer of its own (kept, so each part reuses its analysis), in
+    /// the order of the parts; the statistics summed. Converged when every part is and the
+    /// whole system's residual, on the positions returned, is below the tolerance.
+    RelaxResult relaxParts(MassSpringSystem& system, const RelaxOptions& options,
+                           const std::vector<std::vector<std::uint32_t>>& components,
+                           TimePoint start);
+
     std::unique_ptr<NewtonAnalysis> analysis_;
     NewtonStatistics statistics_;
+    std::vector<std::unique_ptr<FastRelaxer>> parts_;
 };
 
 /// FastRelaxer().relax(system, options).
