@@ -13,6 +13,8 @@
 // grow with the stiffness.
 //
 // How:
+// - Independent parts (physics/fast/Components.h: nets that share only rails) are relaxed one
+//   by one, each as a system of its own, so each takes its own steps and an untouched part none.
 // - Unknowns are the free knots only (fixed knots are eliminated).
 // - Hessian per bar: k u u^T + q (I - u u^T), u the bar's direction, q = the geometric stiffness
 //   t / l >= 0. For a slack bar the negative geometric term is dropped (the positive
