@@ -221,4 +221,11 @@ TEST_CASE("parts: a step limit stops the parts in order; the ones not reached ke
     }
     CHECK(firstMoved > 0);
     CHECK(othersMoved == 0);
+    // Relaxed, then asked again with no steps at all: every part is in equilibrium already.
+    REQUIRE(FastRelaxer().relax(system, RelaxOptions{}).converged);
+    options.maxSteps = 0;
+    const RelaxResult again = FastRelaxer().relax(system, options);
+    CHECK(again.converged);
+    CHECK(again.steps == 0);
+    CHECK(again.stopReason == "converged");
 }

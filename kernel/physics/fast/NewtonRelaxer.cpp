@@ -486,10 +486,10 @@ RelaxResult FastRelaxer::relaxParts(MassSpringSystem& system, const RelaxOptions
         Part part = extractPart(system, components[c], scratch);
         RelaxOptions partOptions = options;
         partOptions.maxSeconds = options.maxSeconds - secondsSince(start);
-        if (options.maxSteps >= 0)
-            partOptions.maxSteps = options.maxSteps - result.steps;
-        if (!(partOptions.maxSeconds > 0) || (options.maxSteps >= 0 && partOptions.maxSteps <= 0)) {
-            result.stopReason = partOptions.maxSeconds > 0 ? "step limit" : "time limit";
+        if (options.maxSteps >= 0) // a part already in equilibrium converges with none left
+            partOptions.maxSteps = std::max<std::int64_t>(0, options.maxSteps - result.steps);
+        if (!(partOptions.maxSeconds > 0)) {
+            result.stopReason = "time limit";
             break;
         }
         if (!options.startTensions.empty()) {
