@@ -464,6 +464,39 @@ void addPart(NewtonStatistics& whole, const NewtonStatistics& part, bool first) 
         whole.ordering = "mixed";
 }
 
+/// A part's options: what is left of the whole run's time and steps, its bars' share of the
+/// tension hint (in `tensions`), and progress reports that show the whole net (`shown`: the
+/// whole system's positions, kept up to date with the part's) with the steps of the parts before.
+RelaxOptions partOptionsFor(const RelaxOptions& options, const Part& part, bool lastPart,
+                            std::int64_t stepsBefore, newton::Clock::time_point start,
+                            std::vector<double>& tensions, std::vector<Vec3>& shown) {
+    RelaxOptions partOptions = options;
+    partOptions.maxSeconds = options.maxSeconds - secondsSince(start);
+    if (options.maxSteps >= 0) // a part already in equilibrium converges with none left
+        partOptions.maxSteps = std::max<std::int64_t>(0, options.maxSteps - stepsBefore);
+    if (!options.startTensions.empty()) {
+        tensions.resize(part.barOf.size());
+        for (std::size_t b = 0; b < part.barOf.size(); ++b)
+            tensions[b] = options.startTensions[part.barOf[b]];
+        partOptions.startTensions = tensions;
+    }
+    if (options.progress)
+        partOptions.progress = [&options, &part, &shown, lastPart, stepsBefore,
+                                start](const RelaxProgress& p) {
+            for (std::size_t k = 0; k < p.positions.size() && k < part.knotOf.size(); ++k)
+                shown[part.knotOf[k]] = p.positions[k];
+            RelaxProgress wholeProgress = p;
+            wholeProgress.steps += stepsBefore;
+            wholeProgress.seconds = secondsSince(start);
+            if (!lastPart)
+                wholeProgress.estimatedSecondsLeft = -1;
+            if (!p.positions.empty())
+                wholeProgress.positions = shown;
+            options.progress(wholeProgress);
+        };
+    return partOptions;
+}
+
 } // namespace
 
 RelaxResult FastRelaxer::relaxParts(MassSpringSystem& system, const RelaxOptions& options,
@@ -483,35 +516,13 @@ RelaxResult FastRelaxer::relaxParts(MassSpringSystem& system, const RelaxOptions
     std::vector<std::int64_t> scratch;
     std::vector<double> tensions;
     for (std::size_t c = 0; c < components.size(); ++c) {
-        Part part = extractPart(system, components[c], scratch);
-        RelaxOptions partOptions = options;
-        partOptions.maxSeconds = options.maxSeconds - secondsSince(start);
-        if (options.maxSteps >= 0) // a part already in equilibrium converges with none left
-            partOptions.maxSteps = std::max<std::int64_t>(0, options.maxSteps - result.steps);
-        if (!(partOptions.maxSeconds > 0)) {
+        if (!(options.maxSeconds - secondsSince(start) > 0)) {
             result.stopReason = "time limit";
             break;
         }
-        if (!options.startTensions.empty()) {
-            tensions.resize(part.barOf.size());
-            for (std::size_t b = 0; b < part.barOf.size(); ++b)
-                tensions[b] = options.startTensions[part.barOf[b]];
-            partOptions.startTensions = tensions;
-        }
-        const std::int64_t stepsBefore = result.steps;
-        if (options.progress)
-            partOptions.progress = [&](const RelaxProgress& p) {
-                for (std::size_t k = 0; k < p.positions.size() && k < part.knotOf.size(); ++k)
-                    shown[part.knotOf[k]] = p.positions[k];
-                RelaxProgress wholeProgress = p;
-                wholeProgress.steps += stepsBefore;
-                wholeProgress.seconds = secondsSince(start);
-                if (c + 1 < components.size())
-                    wholeProgress.estimatedSecondsLeft = -1;
-                if (!p.positions.empty())
-                    wholeProgress.positions = shown;
-                options.progress(wholeProgress);
-            };
+        Part part = extractPart(system, components[c], scratch);
+        const RelaxOptions partOptions = partOptionsFor(
+            options, part, c + 1 == components.size(), result.steps, start, tensions, shown);
         const RelaxResult partResult = parts_[c]->relax(part.system, partOptions);
         for (std::size_t k = 0; k < part.knotOf.size(); ++k)
             system.position[part.knotOf[k]] = part.system.position[k];
