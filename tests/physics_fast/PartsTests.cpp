@@ -156,6 +156,7 @@ TEST_CASE("parts: relaxed one by one to the whole system's equilibrium", "[fast]
     }
     CHECK(result.steps == steps);
     CHECK(kept.statistics().iterations == steps);
+    CHECK(kept.statistics().parts == 3);
     // Progress reports show the whole net, their steps counted across the parts.
     REQUIRE(reports.size() > 3);
     for (std::size_t i = 0; i < reports.size(); ++i) {

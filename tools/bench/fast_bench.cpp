@@ -23,11 +23,15 @@
 //   --cap S        the fast path's time cap, s (default 120)
 //   --centre       each net moved so that its bounding box is centred on the origin
 //   --trace        print the fast path's residual after every Newton iteration
+//   --journal F    the sculpture of journal F from its Eq. 2 start instead of the scenes (the
+//                  installation: netsculpt run scripts/installation.lua --out out -- --no-relax,
+//                  then --journal out/installation.netj --no-rk4; target 5 s)
 
 #include "BenchScenes.h"
 #include "CholeskyBench.h"
 #include "InstructionSet.h"
 
+#include "commands/Document.h"
 #include "physics/Forces.h"
 #include "physics/Relaxer.h"
 #include "physics/ThreadPool.h"
@@ -117,12 +121,13 @@ void centreOnOrigin(MassSpringSystem& system) {
         p -= centre;
 }
 
-void runScene(const Scene& scene, const RunSettings& settings) {
-    MassSpringSystem start = build(scene);
+/// The fast path (and RK4 unless --no-rk4) on `start`, against the target in seconds.
+void runSystem(const std::string& name, MassSpringSystem start, double targetSeconds,
+               const RunSettings& settings) {
     if (settings.centre)
         centreOnOrigin(start);
-    std::printf("\n== %s: %zu knots, %zu bars (target %.2g s)\n", scene.name.c_str(),
-                start.knotCount(), start.barCount(), scene.targetSeconds);
+    std::printf("\n== %s: %zu knots, %zu bars (target %.2g s)\n", name.c_str(),
+                start.knotCount(), start.barCount(), targetSeconds);
 
     MassSpringSystem system = start;
     RelaxOptions options;
@@ -143,12 +148,15 @@ void runScene(const Scene& scene, const RunSettings& settings) {
     std::printf("fast: %s in %.3f s (%s), residual %.3g, %lld Newton iterations (%lld soft at "
                 "scale %.3g), %lld factorizations (%lld failed)\n",
                 outcome.c_str(), result.seconds,
-                result.converged && result.seconds <= scene.targetSeconds ? "within target"
+                result.converged && result.seconds <= targetSeconds ? "within target"
                                                                           : "over target",
                 result.residual, static_cast<long long>(stats.iterations),
                 static_cast<long long>(stats.softIterations), stats.softScale,
                 static_cast<long long>(stats.factorizations),
                 static_cast<long long>(stats.failedFactorizations));
+    if (stats.parts > 1)
+        std::printf("      %lld independent parts, relaxed one by one\n",
+                    static_cast<long long>(stats.parts));
     std::printf("      analysis %.3f s (%s ordering), factorizations %.3f s (%.3g flops each, "
                 "%.2f GFlop/s), solves %.3f s, rest %.3f s; %zu bars in compression at the end\n",
                 stats.analysisSeconds, stats.ordering, stats.factorSeconds, stats.factorFlops,
@@ -170,6 +178,10 @@ void runScene(const Scene& scene, const RunSettings& settings) {
                 slow.residual, static_cast<long long>(slow.forceEvaluations));
     std::printf("ratio rk4 / fast: %s%.1f\n", slow.converged ? "" : ">= ",
                 slow.seconds / std::max(result.seconds, 1e-9));
+}
+
+void runScene(const Scene& scene, const RunSettings& settings) {
+    runSystem(scene.name, build(scene), scene.targetSeconds, settings);
 }
 
 /// Streaming read bandwidth with the pool's threads, bytes per second: the best of 20 sums of a
@@ -261,7 +273,7 @@ int main(int argc, char** argv) {
     bool quick = false;
     RunSettings settings;
     settings.rk4Cap = -1;
-    std::string only;
+    std::string only, journal;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         if (arg == "--quick")
@@ -280,11 +292,24 @@ int main(int argc, char** argv) {
             settings.fastCap = std::atof(argv[++i]);
         else if (arg == "--scene" && i + 1 < argc)
             only = argv[++i];
+        else if (arg == "--journal" && i + 1 < argc)
+            journal = argv[++i];
         else {
             std::fprintf(stderr, "usage: %s [--quick] [--threads N] [--rk4-cap S] [--no-rk4] "
-                                 "[--scene NAME] [--cap S] [--centre] [--trace]\n", argv[0]);
+                                 "[--scene NAME | --journal FILE.netj] [--cap S] [--centre] "
+                                 "[--trace]\n", argv[0]);
             return 2;
         }
+    }
+    if (!journal.empty()) {
+        try {
+            const Document doc = Document::open(journal);
+            runSystem(journal, doc.compiled().system, 5.0, settings);
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "netsculpt-bench-fast: %s\n", e.what());
+            return 1;
+        }
+        return 0;
     }
     // A net asked for by its size runs alone.
     std::vector<Scene> scenes = sizedScene(only);

@@ -87,6 +87,7 @@ struct NewtonAnalysis; // the topology-dependent part of a run (NewtonRelaxer.cp
 
 /// What a FastRelaxer run did beyond RelaxResult, for tests and benchmarks.
 struct NewtonStatistics {
+    std::int64_t parts = 1;          ///< independent parts relaxed one by one (Components.h)
     std::int64_t softIterations = 0; ///< Newton iterations before the material's stiffness (0: none)
     std::int64_t hintIterations = 0; ///< iterations seeded with RelaxOptions::startTensions (0: none)
     std::int64_t iterations = 0;     ///< all Newton iterations (= RelaxResult::steps)
@@ -97,7 +98,7 @@ struct NewtonStatistics {
     double analysisSeconds = 0;      ///< wall time of the analysis (0 when reused)
     double factorSeconds = 0;        ///< wall time in numeric factorizations
     double solveSeconds = 0;         ///< wall time in triangular solves
-    double factorFlops = 0;          ///< per factorization
+    double factorFlops = 0;          ///< per factorization (the mean over parts' ones)
     /// The ordering of the last analysis: "AMD", "METIS" or "geometric" (SupernodalCholesky).
     const char* ordering = "";
 };
