@@ -445,20 +445,24 @@ RelaxResult FastRelaxer::relaxConnected(MassSpringSystem& system, const RelaxOpt
 
 namespace {
 
-/// Adds a part's run to the statistics of the whole.
-void addPart(NewtonStatistics& whole, const NewtonStatistics& part, bool first) {
+/// Adds a part's run to the statistics of the whole (factorFlops: the mean per factorization).
+void addPart(NewtonStatistics& whole, const NewtonStatistics& part) {
+    const double flopsBefore = whole.factorFlops * static_cast<double>(whole.factorizations);
     whole.softIterations += part.softIterations;
     whole.hintIterations += part.hintIterations;
     whole.iterations += part.iterations;
     whole.factorizations += part.factorizations;
     whole.failedFactorizations += part.failedFactorizations;
     whole.softScale = std::min(whole.softScale, part.softScale);
-    whole.reusedAnalysis = (first || whole.reusedAnalysis) && part.reusedAnalysis;
+    whole.reusedAnalysis = whole.reusedAnalysis && part.reusedAnalysis;
     whole.analysisSeconds += part.analysisSeconds;
     whole.factorSeconds += part.factorSeconds;
     whole.solveSeconds += part.solveSeconds;
-    // factorFlops, per factorization, is weighted by the part's factorizations (relaxParts).
-    if (first)
+    const double partFlops = part.factorFlops * static_cast<double>(part.factorizations);
+    if (whole.factorizations > 0)
+        whole.factorFlops =
+            (flopsBefore + partFlops) / static_cast<double>(whole.factorizations);
+    if (*whole.ordering == '\0')
         whole.ordering = part.ordering;
     else if (std::string(whole.ordering) != part.ordering)
         whole.ordering = "mixed";
@@ -502,10 +506,12 @@ RelaxOptions partOptionsFor(const RelaxOptions& options, const Part& part, bool 
 RelaxResult FastRelaxer::relaxParts(MassSpringSystem& system, const RelaxOptions& options,
                                     const std::vector<std::vector<std::uint32_t>>& components,
                                     TimePoint start) {
-    const ForceField whole(system); // validates the system, naming problems by its own numbers
+    ForceField whole(system); // validates the system, naming problems by its own numbers
+    whole.setLoad(options.wind);
     checkStart(system, options);
     statistics_ = NewtonStatistics{};
     statistics_.parts = static_cast<std::int64_t>(components.size());
+    statistics_.reusedAnalysis = true; // until a part makes its own
     while (parts_.size() < components.size())
         parts_.push_back(std::make_unique<FastRelaxer>());
     RelaxResult result;
@@ -516,7 +522,6 @@ RelaxResult FastRelaxer::relaxParts(MassSpringSystem& system, const RelaxOptions
         shown = system.position;
     std::vector<std::int64_t> scratch;
     std::vector<double> tensions;
-    double flops = 0; // of all the parts' factorizations
     for (std::size_t c = 0; c < components.size(); ++c) {
         if (!(options.maxSeconds - secondsSince(start) > 0)) {
             result.stopReason = "time limit";
@@ -530,19 +535,18 @@ RelaxResult FastRelaxer::relaxParts(MassSpringSystem& system, const RelaxOptions
             system.position[part.knotOf[k]] = part.system.position[k];
         result.steps += partResult.steps;
         result.forceEvaluations += partResult.forceEvaluations;
-        addPart(statistics_, parts_[c]->statistics(), c == 0);
-        flops += parts_[c]->statistics().factorFlops *
-                 static_cast<double>(parts_[c]->statistics().factorizations);
+        addPart(statistics_, parts_[c]->statistics());
         if (!partResult.converged && result.stopReason.empty())
             result.stopReason = partResult.stopReason;
         const std::string& why = partResult.stopReason;
         if (why == "time limit" || why == "step limit" || why == "cancelled")
             break; // the other parts keep their start
     }
-    if (statistics_.factorizations > 0)
-        statistics_.factorFlops = flops / static_cast<double>(statistics_.factorizations);
-    // Judged by the project's own measure on exactly the positions returned.
-    result.residual = residual(system, options.wind);
+    // Judged by the project's own measure on exactly the positions returned (the field's
+    // maxResidual has the bits of residual()).
+    std::vector<Vec3> force(system.knotCount());
+    whole.evaluate(system.position, force);
+    result.residual = whole.maxResidual(force);
     ++result.forceEvaluations;
     result.converged = result.stopReason.empty() && result.residual < options.tolerance;
     if (result.stopReason.empty())
