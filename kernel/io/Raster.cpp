@@ -122,12 +122,29 @@ struct FontVertex {
 };
 static_assert(sizeof(FontVertex) == 16);
 
+/// `text` in the glyphs stb_easy_font has: printable ASCII and line breaks. It indexes its glyph
+/// table by `c - 32` with a signed char, so any other byte (a name in UTF-8, a control character)
+/// would read outside the table; each such character becomes one '?'.
+std::string fontText(const std::string& text) {
+    std::string out;
+    out.reserve(text.size());
+    bool inSequence = false; // after a UTF-8 lead byte, its continuation bytes are skipped
+    for (const char c : text) {
+        const auto byte = static_cast<unsigned char>(c);
+        if (byte >= 0x80 && byte < 0xc0 && inSequence)
+            continue;
+        inSequence = byte >= 0xc0;
+        out += (byte == '\n' || (byte >= 32 && byte < 127)) ? c : '?';
+    }
+    return out;
+}
+
 } // namespace
 
 void RasterCanvas::text(double x, double y, const std::string& text, double scale,
                         const Rgb& colour) {
     std::vector<FontVertex> buffer(std::max<std::size_t>(64, text.size() * 300));
-    std::string copy = text;
+    std::string copy = fontText(text);
     unsigned char rgba[4] = {0, 0, 0, 255};
     const int quads = stb_easy_font_print(0, 0, copy.data(), rgba, buffer.data(),
                                           int(buffer.size() * sizeof(FontVertex)));
@@ -139,7 +156,7 @@ void RasterCanvas::text(double x, double y, const std::string& text, double scal
 }
 
 double RasterCanvas::textWidth(const std::string& text, double scale) const {
-    std::string copy = text;
+    std::string copy = fontText(text);
     return stb_easy_font_width(copy.data()) * scale;
 }
 

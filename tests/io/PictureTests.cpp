@@ -144,6 +144,24 @@ TEST_CASE("PNG strokes to points far off the canvas are drawn up to its edge") {
     CHECK_FALSE(inked(20, 50));
 }
 
+TEST_CASE("PNG text outside printable ASCII is drawn as one '?' per character") {
+    // stb_easy_font indexes its glyphs by char - 32: a UTF-8 name (or a control character)
+    // read outside its table (an AddressSanitizer report on `netsculpt export x.png`).
+    io::RasterCanvas canvas(200, 40), expected(200, 40);
+    const std::string name = "r\xc3\xa9seau \xe4\xb8\xad\x01\x7f";
+    CHECK(canvas.textWidth(name, 1) == expected.textWidth("r?seau ???", 1));
+    CHECK(canvas.textWidth(name, 1) > 0);
+    canvas.text(2, 2, name, 1, io::Rgb{});
+    expected.text(2, 2, "r?seau ???", 1, io::Rgb{});
+    CHECK(canvas.rgb8() == expected.rgb8());
+
+    Tube t = tubeWithChild(16, 6, 1.2, 0.35);
+    t.s.pieces.at(t.child).name = "\xe7\xbd\x91 \xc3\xa9\ttab";
+    const auto file = outputDir("png-names") / "names.png";
+    exportFile(t.s, t.compiled, {}, file);
+    CHECK(load(file).width == 1600);
+}
+
 TEST_CASE("PNG sheet of all four views: each panel holds a drawing") {
     Tube t = tubeWithChild(16, 6, 1.2, 0.35);
     const auto file = outputDir("png-sheet") / "sheet.png";
