@@ -230,3 +230,28 @@ TEST_CASE("parts: a step limit stops the parts in order; the ones not reached ke
     CHECK(again.steps == 0);
     CHECK(again.stopReason == "converged");
 }
+
+TEST_CASE("parts: a part already in equilibrium is left alone, without an analysis", "[fast]") {
+    ThreeParts t = threeParts();
+    MassSpringSystem system = compileSculpture(t.s).system;
+    REQUIRE(FastRelaxer().relax(system, RelaxOptions{}).converged);
+    // A fresh relaxer (a document just opened) on the relaxed system: nothing to analyse.
+    FastRelaxer opened;
+    const RelaxResult again = opened.relax(system, RelaxOptions{});
+    CHECK(again.converged);
+    CHECK(again.steps == 0);
+    CHECK(opened.statistics().partsInEquilibrium == 3);
+    CHECK(opened.statistics().reusedAnalysis);
+    CHECK(opened.statistics().analysisSeconds == 0);
+    // The tube's bars 1 % longer: only its part is analysed and relaxed.
+    const auto components = freeComponents(system);
+    std::vector<std::int64_t> scratch;
+    for (std::uint32_t b : extractPart(system, components[1], scratch).barOf)
+        system.restLength[b] *= 1.01;
+    FastRelaxer fresh;
+    const RelaxResult edited = fresh.relax(system, RelaxOptions{});
+    CHECK(edited.converged);
+    CHECK(edited.steps > 0);
+    CHECK(fresh.statistics().partsInEquilibrium == 2);
+    CHECK_FALSE(fresh.statistics().reusedAnalysis);
+}

@@ -501,6 +501,16 @@ RelaxOptions partOptionsFor(const RelaxOptions& options, const Part& part, bool 
     return partOptions;
 }
 
+/// Whether every free knot of a part is below the tolerance in the whole system's `force` (the
+/// same bits as in the part's own field): such a part takes no step, so it needs no analysis.
+bool inEquilibrium(const ForceField& whole, const std::vector<Vec3>& force,
+                   const std::vector<std::uint32_t>& freeKnots, double tolerance) {
+    for (std::uint32_t j : freeKnots)
+        if (!(whole.residualOf(j, force[j]) < tolerance))
+            return false;
+    return true;
+}
+
 } // namespace
 
 RelaxResult FastRelaxer::relaxParts(MassSpringSystem& system, const RelaxOptions& options,
@@ -522,10 +532,17 @@ RelaxResult FastRelaxer::relaxParts(MassSpringSystem& system, const RelaxOptions
         shown = system.position;
     std::vector<std::int64_t> scratch;
     std::vector<double> tensions;
+    std::vector<Vec3> force(system.knotCount());
+    whole.evaluate(system.position, force);
+    ++result.forceEvaluations;
     for (std::size_t c = 0; c < components.size(); ++c) {
         if (!(options.maxSeconds - secondsSince(start) > 0)) {
             result.stopReason = "time limit";
             break;
+        }
+        if (inEquilibrium(whole, force, components[c], options.tolerance)) {
+            ++statistics_.partsInEquilibrium; // untouched by an edit: no step, no analysis
+            continue;
         }
         Part part = extractPart(system, components[c], scratch);
         const RelaxOptions partOptions = partOptionsFor(
@@ -544,7 +561,6 @@ RelaxResult FastRelaxer::relaxParts(MassSpringSystem& system, const RelaxOptions
     }
     // Judged by the project's own measure on exactly the positions returned (the field's
     // maxResidual has the bits of residual()).
-    std::vector<Vec3> force(system.knotCount());
     whole.evaluate(system.position, force);
     result.residual = whole.maxResidual(force);
     ++result.forceEvaluations;

@@ -14,7 +14,9 @@
 //
 // How:
 // - Independent parts (physics/fast/Components.h: nets that share only rails) are relaxed one
-//   by one, each as a system of its own, so each takes its own steps and an untouched part none.
+//   by one, each as a system of its own, so each takes its own steps and an untouched part none
+//   (a part already in equilibrium is not even analysed: the first relax after opening a
+//   relaxed sculpture and editing one part orders and factorizes that part alone).
 // - Unknowns are the free knots only (fixed knots are eliminated).
 // - Hessian per bar: k u u^T + q (I - u u^T), u the bar's direction, q = the geometric stiffness
 //   t / l >= 0. For a slack bar the negative geometric term is dropped (the positive
@@ -88,6 +90,9 @@ struct NewtonAnalysis; // the topology-dependent part of a run (NewtonRelaxer.cp
 /// What a FastRelaxer run did beyond RelaxResult, for tests and benchmarks.
 struct NewtonStatistics {
     std::int64_t parts = 1;          ///< independent parts relaxed one by one (Components.h)
+    /// of them, the ones in equilibrium at the start: no step and no analysis (a part an edit of
+    /// another did not touch)
+    std::int64_t partsInEquilibrium = 0;
     std::int64_t softIterations = 0; ///< Newton iterations before the material's stiffness (0: none)
     std::int64_t hintIterations = 0; ///< iterations seeded with RelaxOptions::startTensions (0: none)
     std::int64_t iterations = 0;     ///< all Newton iterations (= RelaxResult::steps)
