@@ -41,6 +41,31 @@ RailEdge readRailEdge(const Json& j, const std::string& what) {
     return e;
 }
 
+/// Refuses arrays and objects nested deeper than kMaxJsonNesting. Our files nest 8 levels at
+/// most (a snapshot's history entry holding an import's rail points), and nlohmann's copy and
+/// dump recurse once per level: 100,000 nested brackets in a damaged file overflowed the stack.
+void checkNesting(std::string_view text) {
+    int depth = 0;
+    bool inString = false, escaped = false;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (inString) {
+            if (escaped) escaped = false;
+            else if (c == '\\') escaped = true;
+            else if (c == '"') inString = false;
+        } else if (c == '"') {
+            inString = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > kMaxJsonNesting)
+                throw UserError("bad JSON: arrays and objects nested more than " +
+                                std::to_string(kMaxJsonNesting) + " levels deep (at character " +
+                                std::to_string(i + 1) + ")");
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+}
+
 } // namespace
 
 std::string gearText(Gear g) { return toString(g); }
@@ -88,6 +113,7 @@ Colour readColour(ObjectReader& r, const char* key) {
 }
 
 Json parseJson(std::string_view text) {
+    checkNesting(text);
     try {
         return Json::parse(text.begin(), text.end());
     } catch (const Json::parse_error& e) {

@@ -18,8 +18,12 @@ namespace netsculpt::codec {
 
 using Json = nlohmann::ordered_json;
 
-/// Parses JSON text; UserError("bad JSON: ...") for malformed text and for a number that no
-/// double holds (1e400), so a damaged file is reported like any other damage.
+/// The deepest nesting of arrays and objects that parseJson accepts (our files nest 8 levels).
+inline constexpr int kMaxJsonNesting = 100;
+
+/// Parses JSON text; UserError("bad JSON: ...") for malformed text, for a number that no
+/// double holds (1e400) and for nesting deeper than kMaxJsonNesting, so a damaged file is
+/// reported like any other damage.
 Json parseJson(std::string_view text);
 
 /// A finite double as JSON; UserError naming `what` for NaN or infinity.

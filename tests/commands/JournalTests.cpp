@@ -402,6 +402,37 @@ TEST_CASE("a snapshot holding a number beyond a double's range is refused as dam
                             Contains("-1e400"));
 }
 
+TEST_CASE("arrays nested 100,000 deep in a journal or a snapshot are refused as damaged") {
+    // nlohmann's copy and dump recurse once per level: this overflowed the stack.
+    TempDir dir;
+    Document saved = journaledDocument(dir / "j.netj");
+    saved.saveSnapshot(dir / "snap.nets");
+    const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+    std::vector<std::string> lines = linesOf(readBytes(dir / "j.netj"));
+    std::string& l = lines[3];
+    l.replace(l.find("\"rows\":6"), 8, "\"rows\":" + deep);
+    l = resign(l);
+    const std::string bytes = joinLines(lines);
+    writeBytes(dir / "j.netj", bytes);
+    REQUIRE_THROWS_WITH(Document::open(dir / "j.netj"),
+                        Contains("line 4:") && Contains("bad JSON") &&
+                            Contains("nested more than 100 levels deep"));
+    CHECK(readBytes(dir / "j.netj") == bytes);
+
+    std::string snapshot = readBytes(dir / "snap.nets");
+    snapshot.replace(snapshot.find("\"rows\":6"), 8, "\"rows\":" + deep);
+    writeBytes(dir / "snap.nets", snapshot);
+    REQUIRE_THROWS_WITH(Document::load(dir / "snap.nets"),
+                        Contains("snap.nets: the snapshot is damaged (bad JSON") &&
+                            Contains("nested more than 100 levels deep"));
+
+    // Brackets inside a string are text, not nesting.
+    Document named;
+    named.execute(AddRailCommand{"[{" + std::string(150, '[') + "\\\"", ringSpec(12, 1.0, 3.0)});
+    named.save(dir / "named.netj");
+    CHECK(Document::open(dir / "named.netj").hash() == named.hash());
+}
+
 TEST_CASE("a snapshot whose knots are too far apart for their forces starts from Eq. 2") {
     TempDir dir;
     Document saved = journaledDocument(dir / "j.netj");
