@@ -1,5 +1,6 @@
 #include "scripting/Limits.h"
 
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -168,6 +169,34 @@ int checkedResume(lua_State* L) {
     return lua_gettop(L);
 }
 
+/// setmetatable (the original is upvalue 1), refusing a metatable with a __gc field while there
+/// is an instruction budget: Lua runs finalizers with its hooks off, so the budget could not
+/// stop one (a finalizer with an endless loop hung the run, or the closing of the state, for
+/// ever). Any value of __gc is refused: Lua marks an object for finalization only if its
+/// metatable has the field when setmetatable runs, so a placeholder would do.
+int checkedSetmetatable(lua_State* L) {
+    const std::uint64_t budget = context(L).maxInstructions;
+    if (budget != 0 && lua_type(L, 2) == LUA_TTABLE) {
+        lua_pushliteral(L, "__gc");
+        const bool finalizer = lua_rawget(L, 2) != LUA_TNIL;
+        lua_pop(L, 1);
+        if (finalizer) {
+            char text[32];
+            std::snprintf(text, sizeof text, "%s", instructionBudgetText(budget).c_str());
+            return luaL_error(L,
+                              "setmetatable: a metatable with a __gc field is not allowed while "
+                              "the script has an instruction budget (%s): Lua runs finalizers "
+                              "with its hooks off, so the budget could not stop one; "
+                              "--max-instructions 0 lifts the budget",
+                              text);
+        }
+    }
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_insert(L, 1);
+    lua_call(L, lua_gettop(L) - 1, LUA_MULTRET);
+    return lua_gettop(L);
+}
+
 } // namespace
 
 void installLimits(lua_State* L, ScriptContext& context) {
@@ -177,6 +206,9 @@ void installLimits(lua_State* L, ScriptContext& context) {
     lua_setglobal(L, "pcall");
     lua_pushcfunction(L, checkedXpcall);
     lua_setglobal(L, "xpcall");
+    lua_getglobal(L, "setmetatable");
+    lua_pushcclosure(L, checkedSetmetatable, 1);
+    lua_setglobal(L, "setmetatable");
     if (lua_getglobal(L, "coroutine") == LUA_TTABLE) {
         lua_getfield(L, -1, "resume");
         lua_pushcclosure(L, checkedResume, 1);

@@ -67,6 +67,38 @@ TEST_CASE("An endless loop is stopped by the instruction budget", "[limits]") {
     }
 }
 
+TEST_CASE("A finalizer cannot run past the instruction budget", "[limits]") {
+    // Lua runs __gc finalizers with its hooks off: a finalizer's loop ran unseen by the budget
+    // (an endless one hung `netsculpt run`, during the run or while the state closed).
+    const ScriptFolders f("finalizer");
+    const auto o = limited(f, 10'000'000, 64);
+    for (const char* code :
+         {"setmetatable({}, {__gc = function() for i = 1, 1e8 do end end})\n"
+          "collectgarbage()",
+          "local mt = {__gc = true}\nsetmetatable({}, mt)\n"
+          "mt.__gc = function() for i = 1, 1e8 do end end"}) {
+        INFO(code);
+        const auto r = f.run(code, o, "gc.lua");
+        CHECK_FALSE(r.ok);
+        CHECK_THAT(r.error, Contains("gc.lua:") &&
+                                Contains("setmetatable: a metatable with a __gc field is not "
+                                         "allowed while the script has an instruction budget "
+                                         "(10^7)"));
+        CHECK(r.instructions < 1'000'000);
+    }
+    SECTION("other metatables work as before, and without a budget so does __gc") {
+        CHECK(f.run("local t = setmetatable({}, {__index = function() return 7 end})\n"
+                    "assert(t.x == 7)",
+                    o)
+                  .ok);
+        const auto r = f.run("local n = 0\nsetmetatable({}, {__gc = function() n = 1 end})\n"
+                             "collectgarbage()\nassert(n == 1)",
+                             limited(f, 0, 64));
+        CHECK(r.error == "");
+        CHECK(r.ok);
+    }
+}
+
 TEST_CASE("A huge table is stopped by the memory limit", "[limits]") {
     const ScriptFolders f("memory");
     const auto o = limited(f, 0, 32);
