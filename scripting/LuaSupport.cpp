@@ -79,11 +79,38 @@ std::string describe(lua_State* L, int index) {
     }
 }
 
+namespace {
+
+/// Stops Lua's collector while it lives. A collection step, which any allocation may take, runs
+/// the script's __gc finalizers, that is Lua code: inside a body, one that edited the document
+/// freed what the body was reading (doc:knots of a piece that a finalizer's set_rows rebuilt).
+/// Inside a finalizer the collector takes no steps anyway (lua_gc then returns -1).
+class CollectorPause {
+  public:
+    explicit CollectorPause(lua_State* L) : L_(L), wasRunning_(lua_gc(L, LUA_GCISRUNNING) == 1) {
+        if (wasRunning_)
+            lua_gc(L_, LUA_GCSTOP);
+    }
+    ~CollectorPause() {
+        if (wasRunning_)
+            lua_gc(L_, LUA_GCRESTART);
+    }
+    CollectorPause(const CollectorPause&) = delete;
+    CollectorPause& operator=(const CollectorPause&) = delete;
+
+  private:
+    lua_State* L_;
+    bool wasRunning_;
+};
+
+} // namespace
+
 int invoke(lua_State* L, const char* name, Body body) {
     int results = 0;
     bool failed = false;
     {
         const BindingExemption exemption(L); // no Lua error (memory) while C++ frames are live
+        const CollectorPause pause(L);       // and no Lua code: no finalizer re-enters the kernel
         std::string message;
         try {
             Call call{L, name};

@@ -99,6 +99,33 @@ TEST_CASE("A finalizer cannot run past the instruction budget", "[limits]") {
     }
 }
 
+TEST_CASE("Finalizers that edit the sculpture run between calls, never inside one", "[limits]") {
+    // Without a budget __gc is allowed. A finalizer ran by an allocation inside doc:knots and
+    // rebuilt the piece it was reading (an AddressSanitizer heap-use-after-free).
+    const ScriptFolders f("finalizer-edits");
+    const auto r = f.run(
+        "local ns = require 'netsculpt'\n"
+        "local doc = ns.new()\n"
+        "local pts = {} for i = 0, 47 do local a = 2 * math.pi * i / 48\n"
+        "  pts[#pts + 1] = {1.5 * math.cos(a), 1.5 * math.sin(a), 5} end\n"
+        "local top = doc:add_rail{points = pts, closed = true}\n"
+        "local p = doc:attach_to_rail{rail = top, columns = 40, rows = 30, bar = 0.2}\n"
+        "local n = 0\n"
+        "for i = 1, 100 do\n"
+        "  for k = 1, 20 do setmetatable({}, {__gc = function()\n"
+        "    n = n + 1\n"
+        "    doc:set_rows{piece = p, rows = 5 + n % 20}\n"
+        "    if n % 3 == 0 then doc:undo() end end}) end\n"
+        "  local rows = p:info().rows\n"
+        "  assert(#doc:knots(p) == rows, 'knots of a piece edited during the call')\n"
+        "  assert(#doc:piece_info(p).bar_lengths > 0 and #doc:report().pieces == 1)\n"
+        "end\n"
+        "assert(n > 100, n)",
+        limited(f, 0, 256));
+    CHECK(r.error == "");
+    CHECK(r.ok);
+}
+
 TEST_CASE("A huge table is stopped by the memory limit", "[limits]") {
     const ScriptFolders f("memory");
     const auto o = limited(f, 0, 32);
