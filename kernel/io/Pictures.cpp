@@ -26,9 +26,44 @@ std::string hex(const Rgb& c) {
     return text;
 }
 
+/// The length of the valid UTF-8 sequence of two to four bytes at text[i] (no overlong form, no
+/// surrogate, at most U+10FFFF), 0 if there is none.
+std::size_t utf8SequenceAt(const std::string& text, std::size_t i) {
+    const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+    const unsigned lead = byte(i);
+    const std::size_t length = lead >= 0xc2 && lead <= 0xdf   ? 2
+                               : lead >= 0xe0 && lead <= 0xef ? 3
+                               : lead >= 0xf0 && lead <= 0xf4 ? 4
+                                                              : 0;
+    if (length == 0 || i + length > text.size())
+        return 0;
+    for (std::size_t k = 1; k < length; ++k)
+        if ((byte(i + k) & 0xc0) != 0x80)
+            return 0;
+    const unsigned second = byte(i + 1);
+    if ((lead == 0xe0 && second < 0xa0) || (lead == 0xed && second > 0x9f) ||
+        (lead == 0xf0 && second < 0x90) || (lead == 0xf4 && second > 0x8f))
+        return 0;
+    return length;
+}
+
+/// Text for XML: markup characters escaped; a control character XML forbids, or a byte that is
+/// not part of valid UTF-8 (a name set from a script may hold any bytes), written as '?'.
 std::string escaped(const std::string& text) {
     std::string out;
-    for (char c : text) {
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        const auto code = static_cast<unsigned char>(c);
+        if (code >= 0x80) {
+            const std::size_t length = utf8SequenceAt(text, i);
+            out += length > 0 ? text.substr(i, length) : "?";
+            i += length > 0 ? length - 1 : 0;
+            continue;
+        }
+        if (code < 0x20 && c != '\t' && c != '\n' && c != '\r') {
+            out += '?';
+            continue;
+        }
         switch (c) {
         case '&':
             out += "&amp;";

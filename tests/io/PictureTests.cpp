@@ -15,6 +15,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -211,6 +212,21 @@ TEST_CASE("SVG: every bar in every view, in its piece's colour, with title and s
         ++bars;
     CHECK(bars == 4 * t.compiled.system.barCount());
     CHECK_THAT(svg, Contains(">50 cm</text>")); // scale bar of the 1 m sheet
+}
+
+TEST_CASE("SVG text: characters XML forbids and bytes that are not UTF-8 are written as '?'") {
+    SheetNet t = sheet(5, 4, 1.0, 0.3);
+    // A name set from a script may hold any bytes: a control character, a lone continuation
+    // byte, a truncated sequence and an overlong one around valid UTF-8.
+    t.s.pieces.at(t.piece).name = "r\xc3\xa9seau\x01\x80<\xe4\xb8\xad\xe4\xb8 \xc0\xaf\x7f";
+    const auto file = outputDir("svg-names") / "names.svg";
+    exportFile(t.s, t.compiled, {}, file);
+    const std::string svg = readText(file);
+    CHECK_THAT(svg, Contains("r\xc3\xa9seau??&lt;\xe4\xb8\xad?? ??\x7f"));
+    const auto forbidden = std::count_if(svg.begin(), svg.end(), [](char c) {
+        return static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\t' && c != '\r';
+    });
+    CHECK(forbidden == 0);
 }
 
 TEST_CASE("tension colours: the most tensioned bar at the ramp's end, slack bars grey") {
