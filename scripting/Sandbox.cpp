@@ -36,11 +36,21 @@ std::string quotedPath(const fs::path& path) {
     return "\"" + path.string() + "\"";
 }
 
+/// A file name is text without NUL: the system would cut "x.nets\0y" to "x.nets" silently.
+void checkFileName(const std::string& text, const char* call) {
+    if (text.empty())
+        throw UserError(std::string(call) + ": the file name is empty");
+    const std::size_t nul = text.find('\0');
+    if (nul != std::string::npos)
+        throw UserError(std::string(call) + ": the file name \"" + text.substr(0, nul) +
+                        "\\0" + text.substr(nul + 1) + "\" holds a NUL character (byte " +
+                        std::to_string(nul + 1) + "); a file name is text without NUL");
+}
+
 } // namespace
 
 fs::path resolveReadPath(const ScriptContext& context, const std::string& text, const char* call) {
-    if (text.empty())
-        throw UserError(std::string(call) + ": the file name is empty");
+    checkFileName(text, call);
     const fs::path given(text);
     const fs::path full = given.is_absolute() ? given : context.scriptDir / given;
     if (!context.sandboxed)
@@ -56,8 +66,7 @@ fs::path resolveReadPath(const ScriptContext& context, const std::string& text, 
 }
 
 fs::path resolveWritePath(const ScriptContext& context, const std::string& text, const char* call) {
-    if (text.empty())
-        throw UserError(std::string(call) + ": the file name is empty");
+    checkFileName(text, call);
     const fs::path given(text);
     if (given.is_absolute() && context.sandboxed)
         throw UserError(std::string(call) + ": " + quotedPath(given) +

@@ -65,6 +65,11 @@ TEST_CASE("A script writes only through doc:save/export into the output folder",
          f.root / "elsewhere" / "knots.csv"},
         {"doc:write_report('../report.md')", "write_report: \"../report.md\" is outside",
          f.root / "report.md"},
+        {"doc:save('design.netj\\0x')",
+         "save: the file name \"design.netj\\0x\" holds a NUL character (byte 12)",
+         f.out / "design.netj"},
+        {"doc:export('knots.csv\\0.png')", "export: the file name \"knots.csv\\0.png\" holds a NUL",
+         f.out / "knots.csv"},
     };
     for (const Case& c : cases) {
         INFO(c.code);
