@@ -32,7 +32,7 @@ struct NewtonAnalysis {
     // A run's storage (NewtonRun's members of the same names). Every run sets what it reads: its
     // law into the field (ForceField::setLaw), its start into the vectors.
     ForceField field;
-    std::vector<Vec3> x, trial, force, step, bend, bestX;
+    std::vector<Vec3> x, trial, force, step, bend, bendThird, bestX;
     std::vector<double> tension, kCompression, rhs, barTerm, weightOf, dampingUnit;
     HugePageArray barBlock; ///< written whole by every assembly
     HugePageArray values;   ///< likewise

@@ -155,8 +155,11 @@ void NewtonRun::runStage(const Stage& stage, bool lastStage, bool slack) {
         }
         solve();
         bent_ = stage.bent;
-        if (bent_)
+        thirdOrder_ = stage.bent;
+        if (bent_) {
             bendStep();
+            bendThirdOrder();
+        }
         double slope = 0;
         for (std::uint32_t j : analysis_.freeKnots)
             slope += force_[j].dot(step_[j]);

@@ -188,12 +188,17 @@ class NewtonRun {
     void solve();
     void solveInto(std::vector<Vec3>& out);
     void bendStep();
+    void bendThirdOrder();
+    void solveBarTerms(std::vector<Vec3>& out);
     /// Bar b's stiffness at the current scale and compression law for `extension` (l - l_eq).
     double stiffness(std::size_t b, double extension) const {
         return (extension > 0 ? system_.kTension[b] : kCompression_[b]) * scale_;
     }
     Vec3 displacement(std::size_t j, double alpha) const {
-        return bent_ ? step_[j] * alpha + bend_[j] * (0.5 * alpha * alpha) : step_[j] * alpha;
+        if (!bent_)
+            return step_[j] * alpha;
+        const Vec3 second = step_[j] * alpha + bend_[j] * (0.5 * alpha * alpha);
+        return thirdOrder_ ? second + bendThird_[j] * (alpha * alpha * alpha / 6) : second;
     }
     double energyChange(double alpha);
     double meritOf(const std::vector<Vec3>& at);
@@ -227,6 +232,7 @@ class NewtonRun {
     std::vector<Vec3>& force_;
     std::vector<Vec3>& step_;            ///< the Newton step p
     std::vector<Vec3>& bend_;            ///< its second-order correction c (when bent_)
+    std::vector<Vec3>& bendThird_;       ///< its third-order correction e (when thirdOrder_)
     std::vector<double>& tension_;      ///< mixed stage: the bars' tension estimates, N
     std::vector<double>& kCompression_; ///< the stage's compression stiffness per bar, N/m at scale 1
     HugePageArray& barBlock_;           ///< 9 per bar: its Hessian block
@@ -236,6 +242,7 @@ class NewtonRun {
     std::vector<double>& weightOf_;     ///< m_j |g| per knot
     double scale_ = 1;
     bool bent_ = false; ///< the current step's path is x + a p + a^2 / 2 c
+    bool thirdOrder_ = false; ///< ... + a^3 / 6 e
     double compressionBlend_ = 0;
     double residual_ = 0;            ///< at x_, current scale
     double shift_ = kMinShift;       ///< lambda of the Levenberg shift
