@@ -114,18 +114,19 @@ double NewtonRun::softStageScale(double axialToLoad) const {
 std::vector<Stage> NewtonRun::planStages(double softScale, bool warm, double axialToLoad) const {
     const double tolerance = options_.tolerance;
     const auto bent = [&](double scale) { return scale * axialToLoad >= kBendAxialToLoad; };
+    const auto third = [&](double scale) { return scale * axialToLoad >= kThirdOrderAxialToLoad; };
     std::vector<Stage> stages;
     if (softScale < 1.0) {
         const double softTolerance = std::max(kSoftTolerance, tolerance);
-        stages.push_back({softScale, softTolerance, false, 0.0, bent(softScale)});
+        stages.push_back({softScale, softTolerance, false, 0.0, bent(softScale), third(softScale)});
         for (double s = softScale * kStageFactor; s < 1 / std::sqrt(kStageFactor); s *= kStageFactor)
-            stages.push_back({s, softTolerance, false, 0.0, bent(s)});
+            stages.push_back({s, softTolerance, false, 0.0, bent(s), third(s)});
         for (double blend : kFinalBlends)
             if (blend > 0)
-                stages.push_back(
-                    {1.0, std::max(kBlendTolerance, tolerance), true, blend, bent(1.0)});
+                stages.push_back({1.0, std::max(kBlendTolerance, tolerance), true, blend,
+                                  bent(1.0), third(1.0)});
     }
-    stages.push_back({1.0, tolerance, warm || softScale < 1.0, 0.0, bent(1.0)});
+    stages.push_back({1.0, tolerance, warm || softScale < 1.0, 0.0, bent(1.0), third(1.0)});
     return stages;
 }
 
@@ -155,11 +156,11 @@ void NewtonRun::runStage(const Stage& stage, bool lastStage, bool slack) {
         }
         solve();
         bent_ = stage.bent;
-        thirdOrder_ = stage.bent;
-        if (bent_) {
+        thirdOrder_ = stage.bent && stage.thirdOrder;
+        if (bent_)
             bendStep();
+        if (thirdOrder_)
             bendThirdOrder();
-        }
         double slope = 0;
         for (std::uint32_t j : analysis_.freeKnots)
             slope += force_[j].dot(step_[j]);

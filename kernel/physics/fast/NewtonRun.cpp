@@ -205,9 +205,8 @@ void NewtonRun::bendStep() {
 
 /// bendThird_ = the correction e that undoes, to third order, the stretch the path
 /// x + a p + a^2 / 2 c still causes: (H + mu I) e = -sum_b k_b s_b grad l_b, s_b the third
-/// derivative of bar b's length along that path at a = 0, with the factor of the step. With it
-/// the path holds further: the nine banners of docs/performance.md took 2,572 iterations in all
-/// instead of 4,382, the installation 1,141 instead of 1,889.
+/// derivative of bar b's length along that path at a = 0, with the factor of the step
+/// (NewtonRun.h: kThirdOrderAxialToLoad).
 void NewtonRun::bendThirdOrder() {
     forRange(system_.barCount(), [&](std::size_t begin, std::size_t end, std::size_t) {
         for (std::size_t b = begin; b < end; ++b) {

@@ -133,6 +133,15 @@ constexpr double kSmallStep = 0.2;
 // times, relaxed alone as an independent part) 103 instead of 3,193. A hinted start bends every
 // iteration after its first (the edit's tangent predictor).
 constexpr double kBendAxialToLoad = 300;
+// A stage at least kThirdOrderAxialToLoad times its load (the rope's stages after the soft one,
+// which are 2,000 times their load or more) bends its steps to the third order: x + a p +
+// a^2 / 2 c + a^3 / 6 e, e undoing the stretch the second-order path still causes (one more
+// solve per iteration). The path then holds for longer steps where strands creep: the nine
+// banners of docs/performance.md 4,382 -> 2,572 iterations in all, eight other banners 3,617 ->
+// 2,644, the installation 1,889 -> 1,141, the eight slack sheets 997 -> 967. The studio's
+// preview stiffness (300-2,000 times) keeps the second order: there it cost the live bench's
+// drag step about 3 ms for no fewer iterations.
+constexpr double kThirdOrderAxialToLoad = 1500;
 constexpr double kExpandDecrease = 0.75;
 constexpr double kMaxExpansion = 4096;
 // After the exact Hessian was found indefinite, the projected one is used for this many
@@ -161,6 +170,7 @@ struct Stage {
     bool mixed;
     double blend; ///< compression stiffness max(k_c, blend k_s)
     bool bent;    ///< its steps are bent (kBendAxialToLoad)
+    bool thirdOrder; ///< ... to the third order (kThirdOrderAxialToLoad)
 };
 
 /// One relaxation: the Newton iteration and its bookkeeping.
