@@ -1,5 +1,7 @@
 #include "physics/fast/NewtonRun.h"
 
+#include "physics/fast/PathLength.h"
+
 #include <algorithm>
 #include <cmath>
 #include <thread>
@@ -217,14 +219,8 @@ void NewtonRun::bendThirdOrder() {
                 barTerm_[b] = 0;
                 continue;
             }
-            // |d + a dp + a^2/2 dc|^2 = l^2 + f1 a + f2 a^2 / 2 + f3 a^3 / 6 + ...; its root's
-            // third derivative at a = 0:
-            const Vec3 dp = step_[e] - step_[a], dc = bend_[e] - bend_[a];
-            const double f1 = 2 * d.dot(dp), f2 = 2 * (d.dot(dc) + dp.dot(dp));
-            const double f3 = 6 * dp.dot(dc);
-            const double l3 = l * l * l;
             const double third =
-                f3 / (2 * l) - 3 * f1 * f2 / (4 * l3) + 3 * f1 * f1 * f1 / (8 * l3 * l * l);
+                lengthThirdDerivative(d, step_[e] - step_[a], bend_[e] - bend_[a]);
             barTerm_[b] = stiffness(b, l - system_.restLength[b]) * third / l; // k s_b / l
         }
     });

@@ -1,0 +1,32 @@
+#pragma once
+// How a bar's length changes along a curved step of its ends: the derivatives, at a = 0, of
+// l(a) = |d + a dp + a^2 / 2 dc| (d the bar's vector, dp and dc its ends' relative first- and
+// second-order steps). The bent steps of the fast backend (NewtonRun.h) undo the stretch these
+// describe. Internal to kernel/physics/fast.
+
+#include "geometry/Vec3.h"
+
+namespace netsculpt::newton {
+
+/// d^2 l / da^2 at a = 0 along the straight path d + a dp: (|dp|^2 - (u . dp)^2) / l.
+inline double lengthSecondDerivative(const Vec3& d, const Vec3& dp) {
+    const double l = d.norm();
+    if (!(l > 0))
+        return 0;
+    const double along = d.dot(dp) / l;
+    return (dp.dot(dp) - along * along) / l;
+}
+
+/// d^3 l / da^3 at a = 0 along d + a dp + a^2 / 2 dc. With f(a) = l(a)^2 = l^2 + f1 a +
+/// f2 a^2 / 2 + f3 a^3 / 6 + ..., l''' = f3 / 2l - 3 f1 f2 / 4l^3 + 3 f1^3 / 8l^5.
+inline double lengthThirdDerivative(const Vec3& d, const Vec3& dp, const Vec3& dc) {
+    const double l = d.norm();
+    if (!(l > 0))
+        return 0;
+    const double f1 = 2 * d.dot(dp), f2 = 2 * (d.dot(dc) + dp.dot(dp));
+    const double f3 = 6 * dp.dot(dc);
+    const double l3 = l * l * l;
+    return f3 / (2 * l) - 3 * f1 * f2 / (4 * l3) + 3 * f1 * f1 * f1 / (8 * l3 * l * l);
+}
+
+} // namespace netsculpt::newton
