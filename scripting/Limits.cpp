@@ -172,8 +172,9 @@ int checkedResume(lua_State* L) {
 /// setmetatable (the original is upvalue 1), refusing a metatable with a __gc field while there
 /// is an instruction budget: Lua runs finalizers with its hooks off, so the budget could not
 /// stop one (a finalizer with an endless loop hung the run, or the closing of the state, for
-/// ever). Any value of __gc is refused: Lua marks an object for finalization only if its
-/// metatable has the field when setmetatable runs, so a placeholder would do.
+/// ever). Any value of __gc is refused, not only a function: Lua marks an object for
+/// finalization when its metatable has the field at setmetatable, whatever its value, and a
+/// function put there afterwards is then called.
 int checkedSetmetatable(lua_State* L) {
     const std::uint64_t budget = context(L).maxInstructions;
     if (budget != 0 && lua_type(L, 2) == LUA_TTABLE) {
@@ -181,6 +182,7 @@ int checkedSetmetatable(lua_State* L) {
         const bool finalizer = lua_rawget(L, 2) != LUA_TNIL;
         lua_pop(L, 1);
         if (finalizer) {
+            // luaL_error does not return: no std::string may be alive when it is called.
             char text[32];
             std::snprintf(text, sizeof text, "%s", instructionBudgetText(budget).c_str());
             return luaL_error(L,

@@ -133,6 +133,8 @@ constexpr double kSmallStep = 0.2;
 // times, relaxed alone as an independent part) 103 instead of 3,193. A hinted start bends every
 // iteration after its first (the edit's tangent predictor).
 constexpr double kBendAxialToLoad = 300;
+constexpr double kExpandDecrease = 0.75;
+constexpr double kMaxExpansion = 4096;
 // A stage at least kThirdOrderAxialToLoad times its load (the rope's stages after the soft one,
 // which are 2,000 times their load or more) bends its steps to the third order: x + a p +
 // a^2 / 2 c + a^3 / 6 e, e undoing the stretch the second-order path still causes (one more
@@ -142,8 +144,6 @@ constexpr double kBendAxialToLoad = 300;
 // preview stiffness (300-2,000 times) keeps the second order: there it cost the live bench's
 // drag step about 3 ms for no fewer iterations.
 constexpr double kThirdOrderAxialToLoad = 1500;
-constexpr double kExpandDecrease = 0.75;
-constexpr double kMaxExpansion = 4096;
 // After the exact Hessian was found indefinite, the projected one is used for this many
 // iterations before the exact one is tried again.
 constexpr int kExactPause = 3;

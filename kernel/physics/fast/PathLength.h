@@ -9,6 +9,8 @@
 namespace netsculpt::newton {
 
 /// d^2 l / da^2 at a = 0 along the straight path d + a dp: (|dp|^2 - (u . dp)^2) / l.
+/// NewtonRun::bendStep computes the same quantity inline, times k / l, in an order of
+/// operations of its own: its rounding fixes the iteration counts docs/performance.md reports.
 inline double lengthSecondDerivative(const Vec3& d, const Vec3& dp) {
     const double l = d.norm();
     if (!(l > 0))
