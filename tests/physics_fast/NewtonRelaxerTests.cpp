@@ -2,6 +2,7 @@
 // the RK4 path, warm starts, determinism, honest convergence reports, the realistic rope.
 // Comparisons with RK4 use a soft rope (EA 50 N) so that RK4 converges in well under a second.
 #include "ShapeDistance.h"
+#include "TestNets.h"
 #include "model/Compiler.h"
 #include "model/Edits.h"
 #include "model/Error.h"
@@ -23,54 +24,15 @@
 
 using namespace netsculpt;
 using netsculpt::test::maxDistance;
+using netsculpt::test::line;
+using netsculpt::test::polygon;
+using netsculpt::test::rope;
+using netsculpt::test::slackSheet;
+using netsculpt::test::tube;
 
 namespace {
 
 constexpr double kTolerance = 1e-6;
-
-Material rope(double stiffness) { return Material{stiffness, 0.01, 0.002, 0.006}; }
-
-CurveSpec polygon(int n, double radius, double z = 0) {
-    CurveSpec spec;
-    spec.closed = true;
-    for (int i = 0; i < n; ++i) {
-        const double a = 2 * std::numbers::pi * i / n;
-        spec.points.push_back({radius * std::cos(a), radius * std::sin(a), z});
-    }
-    return spec;
-}
-
-CurveSpec line(Vec3 a, Vec3 b) {
-    CurveSpec spec;
-    spec.points = {a, b};
-    return spec;
-}
-
-/// A tube of `rows` x `columns` below a circular rail, knots 0.1 m apart on the rail.
-Sculpture tube(int rows, int columns, double stiffness) {
-    Sculpture s;
-    const RailId top = addRail(s, "top", polygon(columns, columns * 0.1 / (2 * std::numbers::pi)));
-    const PieceId piece = attachToRail(s, {top, columns, 0, rows, 0.1, 0, false});
-    setMaterial(s, piece, rope(stiffness));
-    refreshAndValidate(s);
-    return s;
-}
-
-/// A sheet on an open rail whose last row is held by a parallel rail 0.58 of the sheet's
-/// height away (0.3 H aside, 0.5 H below): it hangs slack between them.
-Sculpture slackSheet(int rows, int columns, double stiffness) {
-    Sculpture s;
-    const double width = (columns - 1) * 0.1;
-    const double height = (rows - 1) * std::sqrt(0.01 - 0.0025);
-    const RailId top = addRail(s, "top", line({0, 0, 0}, {width, 0, 0}));
-    const RailId bottom = addRail(s, "bottom", line({0, 0.3 * height, -0.5 * height},
-                                                    {width, 0.3 * height, -0.5 * height}));
-    const PieceId piece = attachToRail(s, {top, columns, 0, rows, 0.1, 0, false});
-    connectToRail(s, piece, bottom, 0.0, false);
-    setMaterial(s, piece, rope(stiffness));
-    refreshAndValidate(s);
-    return s;
-}
 
 /// Three tubes stacked through gears 1/2 and 1/3 (18, 9, 3 columns). (A gear-up join can have
 /// two stable equilibria, its new knots hanging outside or swung inside the tube, and the two

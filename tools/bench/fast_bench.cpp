@@ -23,6 +23,8 @@
 //   --cap S        the fast path's time cap, s (default 120)
 //   --centre       each net moved so that its bounding box is centred on the origin
 //   --trace        print the fast path's residual after every Newton iteration
+//   --no-focus     every Newton iteration on the whole net, none on a region still out of
+//                  balance alone (FastRelaxer::setFocusRegions; the gain of focusing)
 //   --journal F    the sculpture of journal F from its Eq. 2 start instead of the scenes (the
 //                  installation: netsculpt run scripts/installation.lua --out out -- --no-relax,
 //                  then --journal out/installation.netj --no-rk4; target 5 s)
@@ -105,6 +107,7 @@ struct RunSettings {
     double fastCap = 120, rk4Cap = 60;
     bool rk4 = true, trace = false;
     bool centre = false; ///< the net moved so that its bounding box is centred on the origin
+    bool focus = true;   ///< FastRelaxer::setFocusRegions
 };
 
 /// Moves every knot so that the net's bounding box is centred on the origin: the nearer the
@@ -141,6 +144,7 @@ void runSystem(const std::string& name, MassSpringSystem start, double targetSec
         };
     }
     FastRelaxer fast;
+    fast.setFocusRegions(settings.focus);
     const RelaxResult result = fast.relax(system, options);
     const NewtonStatistics& stats = fast.statistics();
     const std::string outcome =
@@ -157,6 +161,9 @@ void runSystem(const std::string& name, MassSpringSystem start, double targetSec
     if (stats.parts > 1)
         std::printf("      %lld independent parts, relaxed one by one\n",
                     static_cast<long long>(stats.parts));
+    if (stats.focusRegions > 0)
+        std::printf("      %lld regions still out of balance relaxed on their own\n",
+                    static_cast<long long>(stats.focusRegions));
     std::printf("      analysis %.3f s (%s ordering), factorizations %.3f s (%.3g flops each, "
                 "%.2f GFlop/s), solves %.3f s, rest %.3f s; %zu bars in compression at the end\n",
                 stats.analysisSeconds, stats.ordering, stats.factorSeconds, stats.factorFlops,
@@ -288,6 +295,8 @@ int main(int argc, char** argv) {
             settings.rk4Cap = std::atof(argv[++i]);
         else if (arg == "--centre")
             settings.centre = true;
+        else if (arg == "--no-focus")
+            settings.focus = false;
         else if (arg == "--cap" && i + 1 < argc)
             settings.fastCap = std::atof(argv[++i]);
         else if (arg == "--scene" && i + 1 < argc)
@@ -297,7 +306,7 @@ int main(int argc, char** argv) {
         else {
             std::fprintf(stderr, "usage: %s [--quick] [--threads N] [--rk4-cap S] [--no-rk4] "
                                  "[--scene NAME | --journal FILE.netj] [--cap S] [--centre] "
-                                 "[--trace]\n", argv[0]);
+                                 "[--trace] [--no-focus]\n", argv[0]);
             return 2;
         }
     }

@@ -60,22 +60,27 @@ std::vector<std::vector<std::uint32_t>> freeComponents(const MassSpringSystem& s
 Part extractPart(const MassSpringSystem& system, const std::vector<std::uint32_t>& freeKnots,
                  std::vector<std::int64_t>& scratch) {
     const MassSpringSystem& s = system;
-    std::vector<std::int64_t>& partKnot = scratch; // whole knot -> part knot, -1 = not in it
+    // whole knot -> part knot; before numbering: -1 not in the part, -2 one of `freeKnots`,
+    // -3 reached by a bar of theirs (held in the part)
+    std::vector<std::int64_t>& partKnot = scratch;
     partKnot.assign(s.knotCount(), -1);
     for (std::uint32_t j : freeKnots)
-        partKnot[j] = 0;
+        if (!s.fixed[j])
+            partKnot[j] = -2;
     Part part;
     for (std::size_t b = 0; b < s.barCount(); ++b) {
         const std::uint32_t a = s.barA[b], e = s.barB[b];
-        const bool ofPart = (!s.fixed[a] && partKnot[a] >= 0) || (!s.fixed[e] && partKnot[e] >= 0);
-        if (!ofPart)
+        if (partKnot[a] != -2 && partKnot[e] != -2)
             continue;
         part.barOf.push_back(static_cast<std::uint32_t>(b));
-        partKnot[a] = 0; // a fixed end joins the part
-        partKnot[e] = 0;
+        for (std::uint32_t end : {a, e})
+            if (partKnot[end] == -1)
+                partKnot[end] = -3;
     }
+    std::vector<bool> held;
     for (std::size_t j = 0; j < s.knotCount(); ++j)
-        if (partKnot[j] >= 0) {
+        if (partKnot[j] < -1) {
+            held.push_back(partKnot[j] == -3);
             partKnot[j] = static_cast<std::int64_t>(part.knotOf.size());
             part.knotOf.push_back(static_cast<std::uint32_t>(j));
         }
@@ -83,10 +88,11 @@ Part extractPart(const MassSpringSystem& system, const std::vector<std::uint32_t
     MassSpringSystem& p = part.system;
     p.gravity = s.gravity;
     p.refStart.push_back(0);
-    for (std::uint32_t j : part.knotOf) {
+    for (std::size_t k = 0; k < part.knotOf.size(); ++k) {
+        const std::uint32_t j = part.knotOf[k];
         p.position.push_back(s.position[j]);
         p.mass.push_back(s.mass[j]);
-        p.fixed.push_back(s.fixed[j]);
+        p.fixed.push_back(s.fixed[j] || held[k]);
         p.hold.push_back(j < s.hold.size() ? s.hold[j] : RailHold{});
         if (j + 1 < s.refStart.size())
             for (std::uint32_t r = s.refStart[j]; r < s.refStart[j + 1] && r < s.refs.size(); ++r)

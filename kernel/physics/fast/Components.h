@@ -18,16 +18,19 @@ namespace netsculpt {
 /// is not a knot (the caller's validation names the problem).
 std::vector<std::vector<std::uint32_t>> freeComponents(const MassSpringSystem& system);
 
-/// One component as a system of its own: its free knots and the fixed knots its bars reach, and
-/// the bars with a free end among them, both in the whole system's order (so each knot's bars
-/// are summed in the same order, and its force has the same bits, in either system).
+/// Some free knots as a system of their own: them and every other knot their bars reach (held
+/// in the part: for a component, fixed knots only), and the bars with an end among them, both
+/// in the whole system's order (so each knot's bars are summed in the same order, and its force
+/// has the same bits, in either system). A component is such a set (FastRelaxer relaxes parts
+/// one by one), and so is a region of knots still out of balance (FocusRegion.h).
 struct Part {
     MassSpringSystem system;
     std::vector<std::uint32_t> knotOf; ///< the whole system's knot for each of the part's knots
     std::vector<std::uint32_t> barOf;  ///< the whole system's bar for each of the part's bars
 };
 
-/// The part of `system` made of the free knots `freeKnots` (one entry of freeComponents()).
+/// The part of `system` whose free knots are `freeKnots` (one entry of freeComponents(), or
+/// any set of free knots: the others their bars reach are held).
 /// `scratch` is a knot-indexed work array (any content; resized as needed).
 Part extractPart(const MassSpringSystem& system, const std::vector<std::uint32_t>& freeKnots,
                  std::vector<std::int64_t>& scratch);

@@ -3,6 +3,7 @@
 #include "model/Error.h"
 #include "physics/Forces.h"
 #include "physics/fast/Components.h"
+#include "physics/fast/FocusRegion.h"
 #include "physics/fast/NewtonAnalysis.h"
 #include "physics/fast/NewtonRun.h"
 #include "physics/fast/SupernodalCholesky.h"
@@ -35,7 +36,7 @@ RelaxResult NewtonRun::run() {
         if (options_.continuation && !warm)
             softScale = softStageScale(ratio);
     }
-    stats_.softScale = softScale;
+    stats_.softScale = std::min(stats_.softScale, softScale); // (a run after a focus region: 1)
     const std::vector<Stage> stages = planStages(softScale, warm, ratio);
 
     if (analysis_.freeKnots.empty() || residual_ < tolerance)
@@ -191,6 +192,10 @@ void NewtonRun::runStage(const Stage& stage, bool lastStage, bool slack) {
             stopReason_ = "precision limit";
             break;
         }
+        if (lastStage && !(residual_ < stage.tolerance) && wantsFocus(stage.tolerance)) {
+            stopReason_ = "focus";
+            break;
+        }
         // A full step lowers the shift when its model was good: mixed or windy (no energy
         // measured), or the energy fell by at least kShiftDownRatio of the model's half slope.
         const bool goodModel = mixed || windy_ || -fullChange >= kShiftDownRatio * 0.5 * slope;
@@ -320,7 +325,7 @@ void NewtonRun::adaptDamping(double alpha, double slope, double fullChange) {
 RelaxResult NewtonRun::finish(double tolerance) {
     if (stopReason_.empty())
         stopReason_ = "converged";
-    else if (bestResidual_ < residual_)
+    else if (stopReason_ != "focus" && bestResidual_ < residual_)
         x_ = bestX_;
 
     // The answer is judged by the project's own measure on exactly the positions returned.
@@ -354,6 +359,8 @@ RelaxResult NewtonRun::finish(double tolerance) {
 namespace {
 
 using newton::Clock;
+using newton::kFocusTolerance;
+using newton::kMaxFocus;
 using newton::NewtonRun;
 using newton::secondsSince;
 
@@ -443,8 +450,30 @@ RelaxResult FastRelaxer::relaxConnected(MassSpringSystem& system, const RelaxOpt
     }
     statistics_.factorFlops = analysis_->cholesky.factorFlops();
     statistics_.ordering = orderingName(analysis_->cholesky.ordering());
-    NewtonRun run(system, options, *analysis_, statistics_, start);
-    return run.run();
+    // Runs on the whole, each but the first after a focus region (FocusRegion.h) relaxed on its
+    // own: from the material's stage, as warm as the region left the whole.
+    RelaxResult result;
+    std::int64_t evaluations = 0;
+    RelaxOptions afterRegion = options;
+    afterRegion.continuation = false;
+    afterRegion.startTensions = {};
+    for (int focus = 0;; ++focus) {
+        std::vector<std::uint32_t> region;
+        {
+            NewtonRun run(system, focus == 0 ? options : afterRegion, *analysis_, statistics_,
+                          start, result.steps, focusRegions_ && focus < kMaxFocus);
+            result = run.run();
+            region = run.focusRegion();
+        }
+        evaluations += result.forceEvaluations;
+        if (result.stopReason != "focus")
+            break;
+        const RelaxResult part = relaxRegion(system, options, start, region, result.steps);
+        result.steps += part.steps;
+        evaluations += part.forceEvaluations;
+    }
+    result.forceEvaluations = evaluations;
+    return result;
 }
 
 namespace {
@@ -457,6 +486,7 @@ void addPart(NewtonStatistics& whole, const NewtonStatistics& part) {
     whole.iterations += part.iterations;
     whole.factorizations += part.factorizations;
     whole.failedFactorizations += part.failedFactorizations;
+    whole.focusRegions += part.focusRegions;
     whole.softScale = std::min(whole.softScale, part.softScale);
     whole.reusedAnalysis = whole.reusedAnalysis && part.reusedAnalysis;
     whole.analysisSeconds += part.analysisSeconds;
@@ -528,6 +558,8 @@ RelaxResult FastRelaxer::relaxParts(MassSpringSystem& system, const RelaxOptions
     statistics_.reusedAnalysis = true; // until a part makes its own
     while (parts_.size() < components.size())
         parts_.push_back(std::make_unique<FastRelaxer>());
+    for (const auto& part : parts_)
+        part->setFocusRegions(focusRegions_);
     RelaxResult result;
     result.backend = "fast";
     result.tolerance = options.tolerance;
@@ -572,6 +604,33 @@ RelaxResult FastRelaxer::relaxParts(MassSpringSystem& system, const RelaxOptions
     if (result.stopReason.empty())
         result.stopReason = result.converged ? "converged" : "precision limit";
     result.seconds = secondsSince(start);
+    return result;
+}
+
+RelaxResult FastRelaxer::relaxRegion(MassSpringSystem& system, const RelaxOptions& options,
+                                     TimePoint start, const std::vector<std::uint32_t>& region,
+                                     std::int64_t stepsBefore) {
+    std::vector<std::int64_t> scratch;
+    Part part = extractPart(system, region, scratch);
+    RelaxOptions withoutHint = options;
+    withoutHint.startTensions = {};
+    std::vector<double> tensions;
+    std::vector<Vec3> shown;
+    if (options.progress)
+        shown = system.position;
+    RelaxOptions regionOptions =
+        partOptionsFor(withoutHint, part, false, stepsBefore, start, tensions, shown);
+    regionOptions.tolerance = options.tolerance * kFocusTolerance;
+    regionOptions.continuation = false; // from where the whole's last stage left it
+    if (!focus_)
+        focus_ = std::make_unique<FastRelaxer>(); // (focusing itself: only called when on)
+    const RelaxResult result = focus_->relax(part.system, regionOptions);
+    for (std::size_t k = 0; k < part.knotOf.size(); ++k)
+        system.position[part.knotOf[k]] = part.system.position[k];
+    const char* ordering = statistics_.ordering; // the system's own analysis, not the region's
+    addPart(statistics_, focus_->statistics());
+    statistics_.ordering = ordering;
+    ++statistics_.focusRegions;
     return result;
 }
 

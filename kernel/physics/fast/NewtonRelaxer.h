@@ -93,6 +93,9 @@ struct NewtonStatistics {
     /// of them, the ones in equilibrium at the start: no step and no analysis (a part an edit of
     /// another did not touch)
     std::int64_t partsInEquilibrium = 0;
+    /// regions of knots still out of balance relaxed on their own, the rest of their system held
+    /// (FocusRegion.h; a region's own regions included)
+    std::int64_t focusRegions = 0;
     std::int64_t softIterations = 0; ///< Newton iterations before the material's stiffness (0: none)
     std::int64_t hintIterations = 0; ///< iterations seeded with RelaxOptions::startTensions (0: none)
     std::int64_t iterations = 0;     ///< all Newton iterations (= RelaxResult::steps)
@@ -128,11 +131,21 @@ class FastRelaxer final : public Relaxer {
     /// Of the last relax() call.
     const NewtonStatistics& statistics() const { return statistics_; }
 
+    /// Whether a run near its end relaxes the knots still out of balance on their own
+    /// (physics/fast/FocusRegion.h; on by default). Off, every iteration factorizes the whole
+    /// system: the benchmark's comparison (netsculpt-bench-fast --no-focus) and the tests'.
+    void setFocusRegions(bool on) { focusRegions_ = on; }
+
   private:
     using TimePoint = std::chrono::steady_clock::time_point;
     /// A system whose free knots are all connected: Newton's method as described above.
     RelaxResult relaxConnected(MassSpringSystem& system, const RelaxOptions& options,
                                TimePoint start);
+    /// The knots `region` of `system` (physics/fast/FocusRegion.h) relaxed on their own by
+    /// focus_, the others held; its steps counted from `stepsBefore`.
+    RelaxResult relaxRegion(MassSpringSystem& system, const RelaxOptions& options,
+                            TimePoint start, const std::vector<std::uint32_t>& region,
+                            std::int64_t stepsBefore);
     /// A system of several independent parts (physics/fast/Components.h): each relaxed as a
     /// system of its own by a relaxer of its own (kept, so each part reuses its analysis), in
     /// the order of the parts; the statistics summed. Converged when every part is and the
@@ -144,6 +157,8 @@ class FastRelaxer final : public Relaxer {
     std::unique_ptr<NewtonAnalysis> analysis_;
     NewtonStatistics statistics_;
     std::vector<std::unique_ptr<FastRelaxer>> parts_;
+    std::unique_ptr<FastRelaxer> focus_; ///< relaxes focus regions (kept: its storage is reused)
+    bool focusRegions_ = true;
 };
 
 /// FastRelaxer().relax(system, options).

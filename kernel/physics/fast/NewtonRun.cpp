@@ -1,5 +1,6 @@
 #include "physics/fast/NewtonRun.h"
 
+#include "physics/fast/FocusRegion.h"
 #include "physics/fast/PathLength.h"
 
 #include <algorithm>
@@ -10,7 +11,7 @@ namespace netsculpt::newton {
 
 NewtonRun::NewtonRun(MassSpringSystem& system, const RelaxOptions& options,
                      NewtonAnalysis& analysis, NewtonStatistics& statistics,
-                     Clock::time_point start)
+                     Clock::time_point start, std::int64_t stepsBefore, bool mayFocus)
     : system_(system), options_(options), analysis_(analysis), stats_(statistics), start_(start),
       field_(analysis.field), x_(analysis.x), trial_(analysis.trial), force_(analysis.force),
       step_(analysis.step), bend_(analysis.bend), bendThird_(analysis.bendThird),
@@ -22,6 +23,8 @@ NewtonRun::NewtonRun(MassSpringSystem& system, const RelaxOptions& options,
     field_.setLoad(options.wind, 1.0);
     windy_ = options.wind && options.wind->pressure > 0;
     pool_ = relaxationPool(options.threads, field_.barCount());
+    steps_ = stepsBefore;
+    mayFocus_ = mayFocus;
 
     const std::size_t knots = system.knotCount(), bars = system.barCount();
     x_ = system.position;
@@ -417,6 +420,14 @@ bool NewtonRun::stopRequested() {
     else if (options_.maxSteps >= 0 && steps_ >= options_.maxSteps)
         stopReason_ = "step limit";
     return !stopReason_.empty();
+}
+
+/// Whether the last stage should stop for a focus region (FocusRegion.h), force_ being at x_.
+bool NewtonRun::wantsFocus(double tolerance) {
+    if (!mayFocus_)
+        return false;
+    focusRegion_ = newton::focusRegion(field_, force_, analysis_.freeKnots, tolerance);
+    return !focusRegion_.empty();
 }
 
 void NewtonRun::report(bool force) {

@@ -176,9 +176,14 @@ struct Stage {
 /// One relaxation: the Newton iteration and its bookkeeping.
 class NewtonRun {
   public:
+    /// `stepsBefore`: the relaxation's steps before this run (a run after a focus region's).
+    /// `mayFocus`: the last stage may stop with "focus" when few knots are left out of balance
+    /// (FocusRegion.h); focusRegion() then has them.
     NewtonRun(MassSpringSystem& system, const RelaxOptions& options, NewtonAnalysis& analysis,
-              NewtonStatistics& statistics, Clock::time_point start);
+              NewtonStatistics& statistics, Clock::time_point start, std::int64_t stepsBefore = 0,
+              bool mayFocus = false);
     RelaxResult run();
+    const std::vector<std::uint32_t>& focusRegion() const { return focusRegion_; }
 
   private:
     template <typename Body> void forRange(std::size_t count, Body&& body) {
@@ -225,6 +230,7 @@ class NewtonRun {
     void adaptDamping(double alpha, double slope, double fullChange);
     RelaxResult finish(double tolerance);
     bool stopRequested();
+    bool wantsFocus(double tolerance);
     void keepIfBest();
     void report(bool force);
 
@@ -263,6 +269,8 @@ class NewtonRun {
     std::int64_t steps_ = 0, evaluations_ = 0;
     double lastProgress_ = -std::numeric_limits<double>::infinity();
     std::string stopReason_;
+    bool mayFocus_ = false;
+    std::vector<std::uint32_t> focusRegion_;
     // The last stage (the material's stiffness): its best state so far, returned when the run
     // stops before converging (its residual can rise and fall from one iteration to the next).
     std::vector<Vec3>& bestX_;

@@ -1,0 +1,41 @@
+#pragma once
+// Where a relaxation is still going on: the knots of a net that are out of balance when most of
+// it is already in equilibrium. Near the end of a run at the rope's stiffness, a net's parts
+// converge at different rates: in the installation the core, the canopy and most of the banner
+// are in balance within about 300 iterations, while the banner's free edge creeps for a thousand
+// more (docs/performance.md), and every one of those iterations factorizes the whole part. Once
+// few knots are left out of balance, FastRelaxer relaxes them and a few rings of their neighbours
+// as a system of their own (the rest held where it is), then the whole again from there, which
+// takes the few iterations its boundary needs. Internal to kernel/physics/fast.
+#include "physics/Forces.h"
+#include "physics/MassSpringSystem.h"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace netsculpt::newton {
+
+/// A system with fewer free knots than this is relaxed whole to the end: a region's own analysis
+/// and its boundary's iterations would cost about what they save.
+constexpr std::size_t kFocusMinKnots = 2000;
+/// The region: the knots out of balance and this many rings of their neighbours ...
+constexpr int kFocusRings = 6;
+/// ... taken on its own when it holds at most this share of the free knots.
+constexpr double kFocusShare = 0.5;
+/// The region is relaxed to this share of the tolerance, so that the whole, from there, has only
+/// its boundary to settle.
+constexpr double kFocusTolerance = 0.5;
+/// At most this many regions per relaxation of a connected system (each followed by the whole).
+constexpr int kMaxFocus = 4;
+
+/// The free knots of a region to relax on its own, in increasing order: those whose residual in
+/// `force` (ForceField::evaluate at the current positions) is at least `tolerance`, and
+/// kFocusRings rings of their free neighbours (knots a bar joins to the region). Empty when the
+/// system has fewer than kFocusMinKnots free knots (`freeKnots`) or the region would hold more
+/// than kFocusShare of them.
+std::vector<std::uint32_t> focusRegion(const ForceField& field, std::span<const Vec3> force,
+                                       std::span<const std::uint32_t> freeKnots,
+                                       double tolerance);
+
+} // namespace netsculpt::newton

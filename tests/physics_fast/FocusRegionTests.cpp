@@ -1,0 +1,169 @@
+// Regions still out of balance relaxed on their own (kernel/physics/fast/FocusRegion.h): which
+// knots make one, such a region as a system of its own, and a relaxation that takes regions
+// ending in the equilibrium a relaxation of the whole system ends in.
+#include "ShapeDistance.h"
+#include "TestNets.h"
+#include "physics/Forces.h"
+#include "physics/fast/Components.h"
+#include "physics/fast/FocusRegion.h"
+#include "physics/fast/NewtonRelaxer.h"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+using namespace netsculpt;
+using netsculpt::test::maxDistance;
+using netsculpt::test::slackSheet;
+using netsculpt::test::tube;
+
+namespace {
+
+std::vector<std::uint32_t> freeKnotsOf(const MassSpringSystem& system) {
+    std::vector<std::uint32_t> free;
+    for (std::size_t j = 0; j < system.knotCount(); ++j)
+        if (!system.fixed[j])
+            free.push_back(static_cast<std::uint32_t>(j));
+    return free;
+}
+
+/// The number of bars between knot `from` and each knot along paths of free knots (Bellman-Ford
+/// over the bar list until nothing changes); max() where there is none.
+std::vector<int> barsAway(const MassSpringSystem& system, std::uint32_t from) {
+    std::vector<int> hops(system.knotCount(), std::numeric_limits<int>::max());
+    hops[from] = 0;
+    for (bool changed = true; changed;) {
+        changed = false;
+        for (std::size_t b = 0; b < system.barCount(); ++b) {
+            const std::uint32_t a = system.barA[b], e = system.barB[b];
+            if (system.fixed[a] || system.fixed[e])
+                continue;
+            const int viaA = hops[a] == std::numeric_limits<int>::max() ? hops[a] : hops[a] + 1;
+            const int viaE = hops[e] == std::numeric_limits<int>::max() ? hops[e] : hops[e] + 1;
+            if (viaA < hops[e]) {
+                hops[e] = viaA;
+                changed = true;
+            }
+            if (viaE < hops[a]) {
+                hops[a] = viaE;
+                changed = true;
+            }
+        }
+    }
+    return hops;
+}
+
+} // namespace
+
+TEST_CASE("focus region: the knots out of balance and six rings of their free neighbours",
+          "[fast]") {
+    const MassSpringSystem system = compileSculpture(tube(45, 50, 2e5)).system; // 2,200 free
+    const std::vector<std::uint32_t> free = freeKnotsOf(system);
+    REQUIRE(free.size() >= newton::kFocusMinKnots);
+    const ForceField field(system);
+    std::vector<Vec3> force(system.knotCount(), Vec3{});
+
+    SECTION("one knot out of balance: it and the free knots up to six bars away") {
+        const std::uint32_t off = free[free.size() / 2];
+        force[off] = {0, 0, 1}; // 1 N, about fifty knot weights
+        const std::vector<std::uint32_t> region = newton::focusRegion(field, force, free, 1e-6);
+        const std::vector<int> hops = barsAway(system, off);
+        std::vector<std::uint32_t> expected;
+        for (std::uint32_t j : free)
+            if (hops[j] <= newton::kFocusRings)
+                expected.push_back(j);
+        CHECK(expected.size() > 50);
+        CHECK(region == expected);
+    }
+    SECTION("a knot at a rail: the rings stop at the held knots") {
+        const std::uint32_t off = free.front(); // in the row below the rail
+        force[off] = {0, 0, 1};
+        const std::vector<std::uint32_t> region = newton::focusRegion(field, force, free, 1e-6);
+        REQUIRE_FALSE(region.empty());
+        for (std::uint32_t j : region)
+            CHECK_FALSE(system.fixed[j]);
+        CHECK(std::is_sorted(region.begin(), region.end()));
+    }
+    SECTION("a residual just below the tolerance is in balance") {
+        const std::uint32_t off = free[10];
+        force[off] = {0, 0, 0.9e-6 * system.mass[off] * system.gravity.norm()};
+        CHECK(newton::focusRegion(field, force, free, 1e-6).empty());
+        force[off].z *= 2;
+        CHECK_FALSE(newton::focusRegion(field, force, free, 1e-6).empty());
+    }
+    SECTION("no region when it would hold more than half the free knots") {
+        for (std::size_t i = 0; i < free.size(); i += 20) // one knot in 20, six rings round each
+            force[free[i]] = {0, 0, 1};
+        CHECK(newton::focusRegion(field, force, free, 1e-6).empty());
+    }
+    SECTION("no region in a system too small to be worth one") {
+        const MassSpringSystem small = compileSculpture(tube(20, 40, 2e5)).system;
+        const std::vector<std::uint32_t> smallFree = freeKnotsOf(small);
+        REQUIRE(smallFree.size() < newton::kFocusMinKnots);
+        const ForceField smallField(small);
+        std::vector<Vec3> smallForce(small.knotCount(), Vec3{});
+        smallForce[smallFree[100]] = {0, 0, 1};
+        CHECK(newton::focusRegion(smallField, smallForce, smallFree, 1e-6).empty());
+    }
+}
+
+TEST_CASE("focus region: some free knots as a system of their own hold the others their bars "
+          "reach, with the same forces",
+          "[fast]") {
+    MassSpringSystem system = compileSculpture(tube(6, 12, 2e5)).system;
+    for (std::size_t j = 0; j < system.knotCount(); ++j) // off the Eq. 2 start: forces not zero
+        system.position[j] += Vec3{0.01 * std::sin(0.7 * j), 0.01 * std::cos(1.3 * j), 0};
+    const std::vector<std::uint32_t> free = freeKnotsOf(system);
+    const std::vector<std::uint32_t> chosen(free.begin() + 12, free.begin() + 30);
+    std::vector<std::int64_t> scratch;
+    const Part part = extractPart(system, chosen, scratch);
+
+    std::vector<std::uint32_t> expectedBars;
+    for (std::size_t b = 0; b < system.barCount(); ++b)
+        if (std::count(chosen.begin(), chosen.end(), system.barA[b]) ||
+            std::count(chosen.begin(), chosen.end(), system.barB[b]))
+            expectedBars.push_back(static_cast<std::uint32_t>(b));
+    CHECK(part.barOf == expectedBars);
+    std::size_t partFree = 0;
+    for (std::size_t k = 0; k < part.knotOf.size(); ++k) {
+        const bool isChosen = std::count(chosen.begin(), chosen.end(), part.knotOf[k]) > 0;
+        CHECK(part.system.fixed[k] == (isChosen ? 0 : 1));
+        partFree += isChosen ? 1 : 0;
+    }
+    CHECK(partFree == chosen.size());
+    CHECK(part.knotOf.size() > chosen.size()); // their neighbours, held
+
+    ForceField wholeField(system), partField(part.system);
+    std::vector<Vec3> wholeForce(system.knotCount()), partForce(part.system.knotCount());
+    wholeField.evaluate(system.position, wholeForce);
+    partField.evaluate(part.system.position, partForce);
+    for (std::size_t k = 0; k < part.knotOf.size(); ++k)
+        if (!part.system.fixed[k])
+            CHECK(std::memcmp(&partForce[k], &wholeForce[part.knotOf[k]], sizeof(Vec3)) == 0);
+}
+
+TEST_CASE("fast: a relaxation that takes regions on their own ends in the whole's equilibrium",
+          "[fast]") {
+    // A taut tube and a sheet hanging slack, each of more than 2,000 free knots (the same
+    // equilibrium to about 1e-11 m when measured; the bound leaves room for rounding).
+    const Sculpture nets[] = {tube(45, 50, 2e5), slackSheet(45, 50, 2e5)};
+    for (const Sculpture& net : nets) {
+        const MassSpringSystem start = compileSculpture(net).system;
+        MassSpringSystem focused = start, whole = start;
+        FastRelaxer withRegions, withoutRegions;
+        withoutRegions.setFocusRegions(false);
+        const RelaxResult a = withRegions.relax(focused, RelaxOptions{});
+        const RelaxResult b = withoutRegions.relax(whole, RelaxOptions{});
+        REQUIRE(a.converged);
+        REQUIRE(b.converged);
+        CHECK(withRegions.statistics().focusRegions > 0);
+        CHECK(withoutRegions.statistics().focusRegions == 0);
+        CHECK(residual(focused) < 1e-6);
+        CHECK(a.residual == residual(focused));
+        CHECK(maxDistance(focused.position, whole.position) < 1e-9);
+        CHECK(withRegions.statistics().iterations == a.steps);
+    }
+}

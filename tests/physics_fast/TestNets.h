@@ -1,0 +1,56 @@
+#pragma once
+// Nets the fast path's tests relax: a tube below a circular rail and a sheet hanging slack
+// between two parallel rails, built through the model's edits.
+#include "model/Compiler.h"
+#include "model/Edits.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace netsculpt::test {
+
+inline Material rope(double stiffness) { return Material{stiffness, 0.01, 0.002, 0.006}; }
+
+inline CurveSpec polygon(int n, double radius, double z = 0) {
+    CurveSpec spec;
+    spec.closed = true;
+    for (int i = 0; i < n; ++i) {
+        const double a = 2 * std::numbers::pi * i / n;
+        spec.points.push_back({radius * std::cos(a), radius * std::sin(a), z});
+    }
+    return spec;
+}
+
+inline CurveSpec line(Vec3 a, Vec3 b) {
+    CurveSpec spec;
+    spec.points = {a, b};
+    return spec;
+}
+
+/// A tube of `rows` x `columns` below a circular rail, knots 0.1 m apart on the rail.
+inline Sculpture tube(int rows, int columns, double stiffness) {
+    Sculpture s;
+    const RailId top = addRail(s, "top", polygon(columns, columns * 0.1 / (2 * std::numbers::pi)));
+    const PieceId piece = attachToRail(s, {top, columns, 0, rows, 0.1, 0, false});
+    setMaterial(s, piece, rope(stiffness));
+    refreshAndValidate(s);
+    return s;
+}
+
+/// A sheet on an open rail whose last row is held by a parallel rail 0.58 of the sheet's
+/// height away (0.3 H aside, 0.5 H below): it hangs slack between them.
+inline Sculpture slackSheet(int rows, int columns, double stiffness) {
+    Sculpture s;
+    const double width = (columns - 1) * 0.1;
+    const double height = (rows - 1) * std::sqrt(0.01 - 0.0025);
+    const RailId top = addRail(s, "top", line({0, 0, 0}, {width, 0, 0}));
+    const RailId bottom = addRail(s, "bottom", line({0, 0.3 * height, -0.5 * height},
+                                                    {width, 0.3 * height, -0.5 * height}));
+    const PieceId piece = attachToRail(s, {top, columns, 0, rows, 0.1, 0, false});
+    connectToRail(s, piece, bottom, 0.0, false);
+    setMaterial(s, piece, rope(stiffness));
+    refreshAndValidate(s);
+    return s;
+}
+
+} // namespace netsculpt::test
