@@ -16,6 +16,7 @@
 #include <vector>
 
 using namespace netsculpt;
+using netsculpt::test::banner;
 using netsculpt::test::maxDistance;
 using netsculpt::test::slackSheet;
 using netsculpt::test::tube;
@@ -147,23 +148,31 @@ TEST_CASE("focus region: some free knots as a system of their own hold the other
 
 TEST_CASE("fast: a relaxation that takes regions on their own ends in the whole's equilibrium",
           "[fast]") {
-    // A taut tube and a sheet hanging slack, each of more than 2,000 free knots (the same
-    // equilibrium to about 1e-11 m when measured; the bound leaves room for rounding).
-    const Sculpture nets[] = {tube(45, 50, 2e5), slackSheet(45, 50, 2e5)};
-    for (const Sculpture& net : nets) {
-        const MassSpringSystem start = compileSculpture(net).system;
-        MassSpringSystem focused = start, whole = start;
-        FastRelaxer withRegions, withoutRegions;
-        withoutRegions.setFocusRegions(false);
-        const RelaxResult a = withRegions.relax(focused, RelaxOptions{});
-        const RelaxResult b = withoutRegions.relax(whole, RelaxOptions{});
-        REQUIRE(a.converged);
-        REQUIRE(b.converged);
-        CHECK(withRegions.statistics().focusRegions > 0);
-        CHECK(withoutRegions.statistics().focusRegions == 0);
-        CHECK(residual(focused) < 1e-6);
-        CHECK(a.residual == residual(focused));
-        CHECK(maxDistance(focused.position, whole.position) < 1e-9);
-        CHECK(withRegions.statistics().iterations == a.steps);
+    // The banner's free edge creeps in the last stage, so a region is taken there. That edge is
+    // so soft that two states within the tolerance may differ by micrometres: 3.6e-7 m measured
+    // here, 2.4e-6 m for a banner of 50 x 41.
+    const MassSpringSystem start = compileSculpture(banner(45, 51, 2e5)).system; // 2,244 free
+    MassSpringSystem focused = start, whole = start;
+    FastRelaxer withRegions, withoutRegions;
+    withoutRegions.setFocusRegions(false);
+    const RelaxResult a = withRegions.relax(focused, RelaxOptions{});
+    const RelaxResult b = withoutRegions.relax(whole, RelaxOptions{});
+    REQUIRE(a.converged);
+    REQUIRE(b.converged);
+    CHECK(withRegions.statistics().focusRegions > 0);
+    CHECK(withoutRegions.statistics().focusRegions == 0);
+    CHECK(residual(focused) < 1e-6);
+    CHECK(a.residual == residual(focused));
+    CHECK(maxDistance(focused.position, whole.position) < 1e-5);
+    CHECK(withRegions.statistics().iterations == a.steps);
+}
+
+TEST_CASE("fast: a run whose last stage converges quickly takes no region", "[fast]") {
+    // A taut tube and a slack sheet: Newton's last iterations converge quadratically.
+    for (const Sculpture& net : {tube(45, 50, 2e5), slackSheet(45, 50, 2e5)}) {
+        MassSpringSystem system = compileSculpture(net).system;
+        FastRelaxer relaxer;
+        REQUIRE(relaxer.relax(system, RelaxOptions{}).converged);
+        CHECK(relaxer.statistics().focusRegions == 0);
     }
 }

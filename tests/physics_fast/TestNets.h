@@ -1,6 +1,6 @@
 #pragma once
 // Nets the fast path's tests relax: a tube below a circular rail and a sheet hanging slack
-// between two parallel rails, built through the model's edits.
+// between two parallel rails, a banner on a wavy rail, built through the model's edits.
 #include "model/Compiler.h"
 #include "model/Edits.h"
 
@@ -48,6 +48,28 @@ inline Sculpture slackSheet(int rows, int columns, double stiffness) {
                                                     {width, 0.3 * height, -0.5 * height}));
     const PieceId piece = attachToRail(s, {top, columns, 0, rows, 0.1, 0, false});
     connectToRail(s, piece, bottom, 0.0, false);
+    setMaterial(s, piece, rope(stiffness));
+    refreshAndValidate(s);
+    return s;
+}
+
+/// A banner of `rows` x `columns` on a wavy rail 5 m long, its bars 0.1 m in the top row and
+/// 0.14 m in the bottom one: its lower part hangs in strands whose free edges creep to their
+/// equilibrium at the rope's stiffness (docs/performance.md).
+inline Sculpture banner(int rows, int columns, double stiffness) {
+    CurveSpec wave;
+    wave.spline = true;
+    wave.degree = 3;
+    wave.points = {{0, 0, 12.5}, {1, 0.8, 13.0}, {2, 0, 12.5}, {3, 0.8, 13.0}, {4, 0, 12.5}};
+    Sculpture s;
+    AttachToRailArgs args;
+    args.rail = addRail(s, "wave", wave);
+    args.columns = columns;
+    args.rows = rows;
+    args.bar = 0.12;
+    const PieceId piece = attachToRail(s, args);
+    setBarLengthByRow(s, piece, 0, 0.1);
+    setBarLengthByRow(s, piece, rows - 1, 0.14);
     setMaterial(s, piece, rope(stiffness));
     refreshAndValidate(s);
     return s;

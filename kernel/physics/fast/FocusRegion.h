@@ -19,6 +19,10 @@ namespace netsculpt::newton {
 /// A system with fewer free knots than this is relaxed whole to the end: a region's own analysis
 /// and its boundary's iterations would cost about what they save.
 constexpr std::size_t kFocusMinKnots = 2000;
+/// Only after the last stage has taken this many iterations since its start or its last region:
+/// one that converges quadratically takes fewer, and a region would cost it its boundary's
+/// iterations for nothing.
+constexpr int kFocusAfter = 20;
 /// The region: the knots out of balance and this many rings of their neighbours ...
 constexpr int kFocusRings = 6;
 /// ... taken on its own when it holds at most this share of the free knots.
@@ -26,8 +30,6 @@ constexpr double kFocusShare = 0.5;
 /// The region is relaxed to this share of the tolerance, so that the whole, from there, has only
 /// its boundary to settle.
 constexpr double kFocusTolerance = 0.5;
-/// At most this many regions per relaxation of a connected system (each followed by the whole).
-constexpr int kMaxFocus = 4;
 
 /// The free knots of a region to relax on its own, in increasing order: those whose residual in
 /// `force` (ForceField::evaluate at the current positions) is at least `tolerance`, and

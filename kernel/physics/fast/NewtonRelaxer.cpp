@@ -36,7 +36,7 @@ RelaxResult NewtonRun::run() {
         if (options_.continuation && !warm)
             softScale = softStageScale(ratio);
     }
-    stats_.softScale = std::min(stats_.softScale, softScale); // (a run after a focus region: 1)
+    stats_.softScale = softScale;
     const std::vector<Stage> stages = planStages(softScale, warm, ratio);
 
     if (analysis_.freeKnots.empty() || residual_ < tolerance)
@@ -142,6 +142,7 @@ void NewtonRun::runStage(const Stage& stage, bool lastStage, bool slack) {
     const std::int64_t stageStart = steps_;
     int exactPause = 0; // iterations left before the exact Hessian is tried again
     int roundingSteps = 0; // steps in a row that moved no knot beyond kRoundingUnits
+    std::int64_t sinceRegion = stageStart; // the stage's start or its last focus region's end
     if (lastStage)
         keepIfBest();
 
@@ -192,9 +193,14 @@ void NewtonRun::runStage(const Stage& stage, bool lastStage, bool slack) {
             stopReason_ = "precision limit";
             break;
         }
-        if (lastStage && !(residual_ < stage.tolerance) && wantsFocus(stage.tolerance)) {
-            stopReason_ = "focus";
-            break;
+        if (lastStage && steps_ - sinceRegion >= kFocusAfter && !(residual_ < stage.tolerance) &&
+            relaxRegion(stage.tolerance, mixed)) {
+            sinceRegion = steps_;
+            if (lastStage)
+                keepIfBest();
+            best = residual_;
+            sinceBest = 0;
+            continue;
         }
         // A full step lowers the shift when its model was good: mixed or windy (no energy
         // measured), or the energy fell by at least kShiftDownRatio of the model's half slope.
@@ -325,7 +331,7 @@ void NewtonRun::adaptDamping(double alpha, double slope, double fullChange) {
 RelaxResult NewtonRun::finish(double tolerance) {
     if (stopReason_.empty())
         stopReason_ = "converged";
-    else if (stopReason_ != "focus" && bestResidual_ < residual_)
+    else if (bestResidual_ < residual_)
         x_ = bestX_;
 
     // The answer is judged by the project's own measure on exactly the positions returned.
@@ -359,8 +365,6 @@ RelaxResult NewtonRun::finish(double tolerance) {
 namespace {
 
 using newton::Clock;
-using newton::kFocusTolerance;
-using newton::kMaxFocus;
 using newton::NewtonRun;
 using newton::secondsSince;
 
@@ -450,30 +454,14 @@ RelaxResult FastRelaxer::relaxConnected(MassSpringSystem& system, const RelaxOpt
     }
     statistics_.factorFlops = analysis_->cholesky.factorFlops();
     statistics_.ordering = orderingName(analysis_->cholesky.ordering());
-    // Runs on the whole, each but the first after a focus region (FocusRegion.h) relaxed on its
-    // own: from the material's stage, as warm as the region left the whole.
-    RelaxResult result;
-    std::int64_t evaluations = 0;
-    RelaxOptions afterRegion = options;
-    afterRegion.continuation = false;
-    afterRegion.startTensions = {};
-    for (int focus = 0;; ++focus) {
-        std::vector<std::uint32_t> region;
-        {
-            NewtonRun run(system, focus == 0 ? options : afterRegion, *analysis_, statistics_,
-                          start, result.steps, focusRegions_ && focus < kMaxFocus);
-            result = run.run();
-            region = run.focusRegion();
-        }
-        evaluations += result.forceEvaluations;
-        if (result.stopReason != "focus")
-            break;
-        const RelaxResult part = relaxRegion(system, options, start, region, result.steps);
-        result.steps += part.steps;
-        evaluations += part.forceEvaluations;
-    }
-    result.forceEvaluations = evaluations;
-    return result;
+    NewtonRun::RegionRelax regions;
+    if (focusRegions_)
+        regions = [this, &system, &options, start](const std::vector<std::uint32_t>& region,
+                                                  double tolerance, std::int64_t stepsBefore) {
+            return relaxRegion(system, options, start, region, tolerance, stepsBefore);
+        };
+    NewtonRun run(system, options, *analysis_, statistics_, start, regions);
+    return run.run();
 }
 
 namespace {
@@ -609,7 +597,7 @@ RelaxResult FastRelaxer::relaxParts(MassSpringSystem& system, const RelaxOptions
 
 RelaxResult FastRelaxer::relaxRegion(MassSpringSystem& system, const RelaxOptions& options,
                                      TimePoint start, const std::vector<std::uint32_t>& region,
-                                     std::int64_t stepsBefore) {
+                                     double tolerance, std::int64_t stepsBefore) {
     std::vector<std::int64_t> scratch;
     Part part = extractPart(system, region, scratch);
     RelaxOptions withoutHint = options;
@@ -620,10 +608,10 @@ RelaxResult FastRelaxer::relaxRegion(MassSpringSystem& system, const RelaxOption
         shown = system.position;
     RelaxOptions regionOptions =
         partOptionsFor(withoutHint, part, false, stepsBefore, start, tensions, shown);
-    regionOptions.tolerance = options.tolerance * kFocusTolerance;
-    regionOptions.continuation = false; // from where the whole's last stage left it
+    regionOptions.tolerance = tolerance;
+    regionOptions.continuation = false; // from where the last stage left it
     if (!focus_)
-        focus_ = std::make_unique<FastRelaxer>(); // (focusing itself: only called when on)
+        focus_ = std::make_unique<FastRelaxer>();
     const RelaxResult result = focus_->relax(part.system, regionOptions);
     for (std::size_t k = 0; k < part.knotOf.size(); ++k)
         system.position[part.knotOf[k]] = part.system.position[k];

@@ -85,6 +85,7 @@
 
 namespace netsculpt {
 
+
 struct NewtonAnalysis; // the topology-dependent part of a run (NewtonRelaxer.cpp)
 
 /// What a FastRelaxer run did beyond RelaxResult, for tests and benchmarks.
@@ -141,11 +142,11 @@ class FastRelaxer final : public Relaxer {
     /// A system whose free knots are all connected: Newton's method as described above.
     RelaxResult relaxConnected(MassSpringSystem& system, const RelaxOptions& options,
                                TimePoint start);
-    /// The knots `region` of `system` (physics/fast/FocusRegion.h) relaxed on their own by
-    /// focus_, the others held; its steps counted from `stepsBefore`.
+    /// The knots `region` of `system` (physics/fast/FocusRegion.h) relaxed on their own to
+    /// `tolerance` by focus_, the others held; its steps counted from `stepsBefore`.
     RelaxResult relaxRegion(MassSpringSystem& system, const RelaxOptions& options,
                             TimePoint start, const std::vector<std::uint32_t>& region,
-                            std::int64_t stepsBefore);
+                            double tolerance, std::int64_t stepsBefore);
     /// A system of several independent parts (physics/fast/Components.h): each relaxed as a
     /// system of its own by a relaxer of its own (kept, so each part reuses its analysis), in
     /// the order of the parts; the statistics summed. Converged when every part is and the

@@ -11,7 +11,7 @@ namespace netsculpt::newton {
 
 NewtonRun::NewtonRun(MassSpringSystem& system, const RelaxOptions& options,
                      NewtonAnalysis& analysis, NewtonStatistics& statistics,
-                     Clock::time_point start, std::int64_t stepsBefore, bool mayFocus)
+                     Clock::time_point start, RegionRelax regions)
     : system_(system), options_(options), analysis_(analysis), stats_(statistics), start_(start),
       field_(analysis.field), x_(analysis.x), trial_(analysis.trial), force_(analysis.force),
       step_(analysis.step), bend_(analysis.bend), bendThird_(analysis.bendThird),
@@ -23,8 +23,7 @@ NewtonRun::NewtonRun(MassSpringSystem& system, const RelaxOptions& options,
     field_.setLoad(options.wind, 1.0);
     windy_ = options.wind && options.wind->pressure > 0;
     pool_ = relaxationPool(options.threads, field_.barCount());
-    steps_ = stepsBefore;
-    mayFocus_ = mayFocus;
+    regions_ = std::move(regions);
 
     const std::size_t knots = system.knotCount(), bars = system.barCount();
     x_ = system.position;
@@ -422,12 +421,25 @@ bool NewtonRun::stopRequested() {
     return !stopReason_.empty();
 }
 
-/// Whether the last stage should stop for a focus region (FocusRegion.h), force_ being at x_.
-bool NewtonRun::wantsFocus(double tolerance) {
-    if (!mayFocus_)
+/// When few knots are left out of balance (the last stage, force_ being at x_): they and rings
+/// of their neighbours relaxed on their own, the rest held (FocusRegion.h), and the stage goes
+/// on from there. False when there is no such region.
+bool NewtonRun::relaxRegion(double tolerance, bool mixed) {
+    if (!regions_)
         return false;
-    focusRegion_ = newton::focusRegion(field_, force_, analysis_.freeKnots, tolerance);
-    return !focusRegion_.empty();
+    const std::vector<std::uint32_t> region =
+        focusRegion(field_, force_, analysis_.freeKnots, tolerance);
+    if (region.empty())
+        return false;
+    std::copy(x_.begin(), x_.end(), system_.position.begin());
+    // (Its force passes are over the region only: not counted as the whole system's.)
+    steps_ += regions_(region, tolerance * kFocusTolerance, steps_).steps;
+    for (std::uint32_t j : region)
+        x_[j] = system_.position[j];
+    residual_ = evaluate(x_);
+    if (mixed)
+        elasticTensions();
+    return true;
 }
 
 void NewtonRun::report(bool force) {

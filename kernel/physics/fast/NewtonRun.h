@@ -8,6 +8,7 @@
 #include "physics/Forces.h"
 #include "physics/Relaxer.h"
 #include "physics/ThreadPool.h"
+#include "physics/fast/FocusRegion.h"
 #include "physics/fast/HugePageArray.h"
 #include "physics/fast/NewtonAnalysis.h"
 #include "physics/fast/NewtonRelaxer.h"
@@ -16,6 +17,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
@@ -176,14 +178,16 @@ struct Stage {
 /// One relaxation: the Newton iteration and its bookkeeping.
 class NewtonRun {
   public:
-    /// `stepsBefore`: the relaxation's steps before this run (a run after a focus region's).
-    /// `mayFocus`: the last stage may stop with "focus" when few knots are left out of balance
-    /// (FocusRegion.h); focusRegion() then has them.
+    /// Relaxes a region of the system's knots on its own (FocusRegion.h) from the positions in
+    /// the system to `tolerance`, the others held, and leaves them there; its steps are counted
+    /// from `stepsBefore`.
+    using RegionRelax = std::function<RelaxResult(const std::vector<std::uint32_t>& region,
+                                                  double tolerance, std::int64_t stepsBefore)>;
+
+    /// `regions`: empty, every iteration is on the whole system.
     NewtonRun(MassSpringSystem& system, const RelaxOptions& options, NewtonAnalysis& analysis,
-              NewtonStatistics& statistics, Clock::time_point start, std::int64_t stepsBefore = 0,
-              bool mayFocus = false);
+              NewtonStatistics& statistics, Clock::time_point start, RegionRelax regions = {});
     RelaxResult run();
-    const std::vector<std::uint32_t>& focusRegion() const { return focusRegion_; }
 
   private:
     template <typename Body> void forRange(std::size_t count, Body&& body) {
@@ -230,7 +234,7 @@ class NewtonRun {
     void adaptDamping(double alpha, double slope, double fullChange);
     RelaxResult finish(double tolerance);
     bool stopRequested();
-    bool wantsFocus(double tolerance);
+    bool relaxRegion(double tolerance, bool mixed);
     void keepIfBest();
     void report(bool force);
 
@@ -269,8 +273,7 @@ class NewtonRun {
     std::int64_t steps_ = 0, evaluations_ = 0;
     double lastProgress_ = -std::numeric_limits<double>::infinity();
     std::string stopReason_;
-    bool mayFocus_ = false;
-    std::vector<std::uint32_t> focusRegion_;
+    RegionRelax regions_;
     // The last stage (the material's stiffness): its best state so far, returned when the run
     // stops before converging (its residual can rise and fall from one iteration to the next).
     std::vector<Vec3>& bestX_;
