@@ -546,8 +546,10 @@ RelaxResult FastRelaxer::relaxParts(MassSpringSystem& system, const RelaxOptions
     statistics_.reusedAnalysis = true; // until a part makes its own
     while (parts_.size() < components.size())
         parts_.push_back(std::make_unique<FastRelaxer>());
-    for (const auto& part : parts_)
+    for (const auto& part : parts_) {
         part->setFocusRegions(focusRegions_);
+        part->regionLevel_ = regionLevel_;
+    }
     RelaxResult result;
     result.backend = "fast";
     result.tolerance = options.tolerance;
@@ -608,10 +610,15 @@ RelaxResult FastRelaxer::relaxRegion(MassSpringSystem& system, const RelaxOption
         shown = system.position;
     RelaxOptions regionOptions =
         partOptionsFor(withoutHint, part, false, stepsBefore, start, tensions, shown);
-    regionOptions.tolerance = tolerance;
+    regionOptions.tolerance = regionLevel_ ? tolerance : tolerance * newton::kFocusTolerance;
     regionOptions.continuation = false; // from where the last stage left it
-    if (!focus_)
+    regionOptions.maxSteps = regionOptions.maxSteps >= 0
+                                 ? std::min(regionOptions.maxSteps, newton::kFocusMaxSteps)
+                                 : newton::kFocusMaxSteps;
+    if (!focus_) {
         focus_ = std::make_unique<FastRelaxer>();
+        focus_->regionLevel_ = true;
+    }
     const RelaxResult result = focus_->relax(part.system, regionOptions);
     for (std::size_t k = 0; k < part.knotOf.size(); ++k)
         system.position[part.knotOf[k]] = part.system.position[k];

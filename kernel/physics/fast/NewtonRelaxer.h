@@ -160,6 +160,7 @@ class FastRelaxer final : public Relaxer {
     std::vector<std::unique_ptr<FastRelaxer>> parts_;
     std::unique_ptr<FastRelaxer> focus_; ///< relaxes focus regions (kept: its storage is reused)
     bool focusRegions_ = true;
+    bool regionLevel_ = false; ///< this relaxer relaxes focus regions (its own: the same tolerance)
 };
 
 /// FastRelaxer().relax(system, options).

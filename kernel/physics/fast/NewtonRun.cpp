@@ -433,7 +433,7 @@ bool NewtonRun::relaxRegion(double tolerance, bool mixed) {
         return false;
     std::copy(x_.begin(), x_.end(), system_.position.begin());
     // (Its force passes are over the region only: not counted as the whole system's.)
-    steps_ += regions_(region, tolerance * kFocusTolerance, steps_).steps;
+    steps_ += regions_(region, tolerance, steps_).steps;
     for (std::uint32_t j : region)
         x_[j] = system_.position[j];
     residual_ = evaluate(x_);

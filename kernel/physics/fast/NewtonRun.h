@@ -179,8 +179,8 @@ struct Stage {
 class NewtonRun {
   public:
     /// Relaxes a region of the system's knots on its own (FocusRegion.h) from the positions in
-    /// the system to `tolerance`, the others held, and leaves them there; its steps are counted
-    /// from `stepsBefore`.
+    /// the system, the others held, and leaves them there; `tolerance` is the stage's, and the
+    /// region's steps are counted from `stepsBefore`.
     using RegionRelax = std::function<RelaxResult(const std::vector<std::uint32_t>& region,
                                                   double tolerance, std::int64_t stepsBefore)>;
 
