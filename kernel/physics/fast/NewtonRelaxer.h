@@ -17,6 +17,9 @@
 //   by one, each as a system of its own, so each takes its own steps and an untouched part none
 //   (a part already in equilibrium is not even analysed: the first relax after opening a
 //   relaxed sculpture and editing one part orders and factorizes that part alone).
+// - Near the end, once few knots are left out of balance (a free edge creeping while the rest of
+//   its net is in equilibrium), they and a few rings of neighbours are relaxed as a system of
+//   their own, the rest held, and the whole goes on from there (physics/fast/FocusRegion.h).
 // - Unknowns are the free knots only (fixed knots are eliminated).
 // - Hessian per bar: k u u^T + q (I - u u^T), u the bar's direction, q = the geometric stiffness
 //   t / l >= 0. For a slack bar the negative geometric term is dropped (the positive
