@@ -196,8 +196,7 @@ void NewtonRun::runStage(const Stage& stage, bool lastStage, bool slack) {
         if (lastStage && steps_ - sinceRegion >= kFocusAfter && !(residual_ < stage.tolerance) &&
             relaxRegion(stage.tolerance, mixed)) {
             sinceRegion = steps_;
-            if (lastStage)
-                keepIfBest();
+            keepIfBest();
             best = residual_;
             sinceBest = 0;
             continue;

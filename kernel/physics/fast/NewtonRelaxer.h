@@ -145,8 +145,9 @@ class FastRelaxer final : public Relaxer {
     /// A system whose free knots are all connected: Newton's method as described above.
     RelaxResult relaxConnected(MassSpringSystem& system, const RelaxOptions& options,
                                TimePoint start);
-    /// The knots `region` of `system` (physics/fast/FocusRegion.h) relaxed on their own to
-    /// `tolerance` by focus_, the others held; its steps counted from `stepsBefore`.
+    /// The knots `region` of `system` (physics/fast/FocusRegion.h) relaxed on their own by
+    /// focus_, the others held, to kFocusTolerance times `tolerance` (the stage's; a region's own
+    /// regions to the region's tolerance); its steps counted from `stepsBefore`.
     RelaxResult relaxRegion(MassSpringSystem& system, const RelaxOptions& options,
                             TimePoint start, const std::vector<std::uint32_t>& region,
                             double tolerance, std::int64_t stepsBefore);
