@@ -24,8 +24,7 @@
 
 using namespace netsculpt;
 using netsculpt::test::maxDistance;
-using netsculpt::test::line;
-using netsculpt::test::polygon;
+using netsculpt::test::polygonRail;
 using netsculpt::test::rope;
 using netsculpt::test::slackSheet;
 using netsculpt::test::tube;
@@ -39,7 +38,7 @@ constexpr double kTolerance = 1e-6;
 /// paths need not pick the same one; that case is left out of this comparison.)
 Sculpture gearStack(double stiffness) {
     Sculpture s;
-    const RailId top = addRail(s, "top", polygon(18, 18 * 0.1 / (2 * std::numbers::pi)));
+    const RailId top = addRail(s, "top", polygonRail(18, 18 * 0.1 / (2 * std::numbers::pi)));
     const PieceId a = attachToRail(s, {top, 18, 0, 4, 0.1, 0, false});
     const PieceId b = attachToPiece(s, {a, Gear{1, 2}, 4, 0.12});
     const PieceId c = attachToPiece(s, {b, Gear{1, 3}, 3, 0.2});

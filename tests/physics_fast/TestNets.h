@@ -3,6 +3,7 @@
 // between two parallel rails, a banner on a wavy rail, built through the model's edits.
 #include "model/Compiler.h"
 #include "model/Edits.h"
+#include "model/TestSculptures.h"
 
 #include <cmath>
 #include <numbers>
@@ -11,26 +12,11 @@ namespace netsculpt::test {
 
 inline Material rope(double stiffness) { return Material{stiffness, 0.01, 0.002, 0.006}; }
 
-inline CurveSpec polygon(int n, double radius, double z = 0) {
-    CurveSpec spec;
-    spec.closed = true;
-    for (int i = 0; i < n; ++i) {
-        const double a = 2 * std::numbers::pi * i / n;
-        spec.points.push_back({radius * std::cos(a), radius * std::sin(a), z});
-    }
-    return spec;
-}
-
-inline CurveSpec line(Vec3 a, Vec3 b) {
-    CurveSpec spec;
-    spec.points = {a, b};
-    return spec;
-}
-
 /// A tube of `rows` x `columns` below a circular rail, knots 0.1 m apart on the rail.
 inline Sculpture tube(int rows, int columns, double stiffness) {
     Sculpture s;
-    const RailId top = addRail(s, "top", polygon(columns, columns * 0.1 / (2 * std::numbers::pi)));
+    const double radius = columns * 0.1 / (2 * std::numbers::pi);
+    const RailId top = addRail(s, "top", polygonRail(columns, radius));
     const PieceId piece = attachToRail(s, {top, columns, 0, rows, 0.1, 0, false});
     setMaterial(s, piece, rope(stiffness));
     refreshAndValidate(s);
@@ -43,8 +29,8 @@ inline Sculpture slackSheet(int rows, int columns, double stiffness) {
     Sculpture s;
     const double width = (columns - 1) * 0.1;
     const double height = (rows - 1) * std::sqrt(0.01 - 0.0025);
-    const RailId top = addRail(s, "top", line({0, 0, 0}, {width, 0, 0}));
-    const RailId bottom = addRail(s, "bottom", line({0, 0.3 * height, -0.5 * height},
+    const RailId top = addRail(s, "top", lineRail({0, 0, 0}, {width, 0, 0}));
+    const RailId bottom = addRail(s, "bottom", lineRail({0, 0.3 * height, -0.5 * height},
                                                     {width, 0.3 * height, -0.5 * height}));
     const PieceId piece = attachToRail(s, {top, columns, 0, rows, 0.1, 0, false});
     connectToRail(s, piece, bottom, 0.0, false);
@@ -53,7 +39,8 @@ inline Sculpture slackSheet(int rows, int columns, double stiffness) {
     return s;
 }
 
-/// A banner of `rows` x `columns` on a wavy rail 5 m long, its bars 0.1 m in the top row and
+/// A banner of `rows` x `columns` on a wavy rail 5 m long (the benchmark's banner-RxC scene,
+/// tools/bench/BenchScenes.h), its bars 0.1 m in the top row and
 /// 0.14 m in the bottom one: its lower part hangs in strands whose free edges creep to their
 /// equilibrium at the rope's stiffness (docs/performance.md).
 inline Sculpture banner(int rows, int columns, double stiffness) {
