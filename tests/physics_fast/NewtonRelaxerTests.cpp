@@ -452,7 +452,8 @@ TEST_CASE("fast: never reports converged when it is not", "[fast]") {
     CHECK(zero.residual == residual(none));
 }
 
-TEST_CASE("fast: a run stopped at the material's stiffness returns its best state there", "[fast]") {
+TEST_CASE("fast: a run stopped at the material's stiffness returns its best state there",
+          "[fast]") {
     // Without continuation the whole run is at the material's stiffness, from the Eq. 2 start of
     // a slack sheet: its residual rises and falls from one iteration to the next while the
     // energy goes down. Stopped after m iterations, the run returns the lowest-residual state it
@@ -556,7 +557,8 @@ TEST_CASE("fast: bad input is a user error", "[fast]") {
     CHECK_THROWS_WITH(relaxFast(broken), Catch::Contains("non-finite position"));
 }
 
-TEST_CASE("fast: a net of more than 2,000 free knots is ordered by its knots' positions", "[fast]") {
+TEST_CASE("fast: a net of more than 2,000 free knots is ordered by its knots' positions",
+          "[fast]") {
     MassSpringSystem system = compileSculpture(tube(45, 50, 2e5)).system; // 2,200 free knots
     FastRelaxer relaxer;
     REQUIRE(relaxer.relax(system, RelaxOptions{}).converged);

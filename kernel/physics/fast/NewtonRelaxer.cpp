@@ -42,7 +42,8 @@ RelaxResult NewtonRun::run() {
     if (analysis_.freeKnots.empty() || residual_ < tolerance)
         stopReason_ = "converged";
     bool slack = false;
-    for (std::size_t stageIndex = 0; stageIndex < stages.size() && stopReason_.empty(); ++stageIndex) {
+    for (std::size_t stageIndex = 0; stageIndex < stages.size() && stopReason_.empty();
+         ++stageIndex) {
         const Stage& stage = stages[stageIndex];
         // The first soft stage tells a slack net (bars in compression at its equilibrium) from
         // a taut one; only a slack one gets the stiffer compression and the damping after it.
@@ -120,7 +121,8 @@ std::vector<Stage> NewtonRun::planStages(double softScale, bool warm, double axi
     if (softScale < 1.0) {
         const double softTolerance = std::max(kSoftTolerance, tolerance);
         stages.push_back({softScale, softTolerance, false, 0.0, bent(softScale), third(softScale)});
-        for (double s = softScale * kStageFactor; s < 1 / std::sqrt(kStageFactor); s *= kStageFactor)
+        for (double s = softScale * kStageFactor; s < 1 / std::sqrt(kStageFactor);
+             s *= kStageFactor)
             stages.push_back({s, softTolerance, false, 0.0, bent(s), third(s)});
         for (double blend : kFinalBlends)
             if (blend > 0)

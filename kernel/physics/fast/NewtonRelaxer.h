@@ -75,8 +75,9 @@
 //
 // Options: tolerance, maxSeconds, maxSteps (a step = one Newton iteration, i.e. one
 // factorization and solve), threads, cancel, progress, progressInterval, continuation (false:
-// no soft stage), startTensions and wind are honoured; previewStiffnessScale and continuationFactor are RK4's
-// and ignored (the soft stage's scale comes from the load, see kSoftLoadFactor).
+// no soft stage), startTensions and wind are honoured; previewStiffnessScale and
+// continuationFactor are RK4's and ignored (the soft stage's scale comes from the load, see
+// kSoftLoadFactor).
 
 #include "physics/Relaxer.h"
 
@@ -100,13 +101,16 @@ struct NewtonStatistics {
     /// regions of knots still out of balance relaxed on their own, the rest of their system held
     /// (FocusRegion.h; a region's own regions included)
     std::int64_t focusRegions = 0;
-    std::int64_t softIterations = 0; ///< Newton iterations before the material's stiffness (0: none)
-    std::int64_t hintIterations = 0; ///< iterations seeded with RelaxOptions::startTensions (0: none)
+    /// Newton iterations before the material's stiffness (0: none)
+    std::int64_t softIterations = 0;
+    /// iterations seeded with RelaxOptions::startTensions (0: none)
+    std::int64_t hintIterations = 0;
     std::int64_t iterations = 0;     ///< all Newton iterations (= RelaxResult::steps)
     std::int64_t factorizations = 0; ///< numeric factorizations, failed ones included
     std::int64_t failedFactorizations = 0; ///< not positive definite (then the shift grows)
     double softScale = 1;            ///< stiffness scale of the first soft stage (1 = none)
-    bool reusedAnalysis = false;     ///< the ordering and symbolic analysis came from a previous call
+    /// the ordering and symbolic analysis came from a previous call
+    bool reusedAnalysis = false;
     double analysisSeconds = 0;      ///< wall time of the analysis (0 when reused)
     double factorSeconds = 0;        ///< wall time in numeric factorizations
     double solveSeconds = 0;         ///< wall time in triangular solves

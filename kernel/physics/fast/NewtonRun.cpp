@@ -154,7 +154,8 @@ void NewtonRun::assemble(bool mixed, bool exact) {
         for (std::size_t f = 0; f < freeCount; ++f)
             for (int i : {0, 4, 8})
                 values_[9 * f + static_cast<std::size_t>(i)] += damping_ * dampingUnit_[f];
-    meanDiagonal_ = freeCount > 0 && trace > 0 ? trace / (3.0 * static_cast<double>(freeCount)) : 1.0;
+    meanDiagonal_ =
+        freeCount > 0 && trace > 0 ? trace / (3.0 * static_cast<double>(freeCount)) : 1.0;
 }
 
 bool NewtonRun::factorize() {

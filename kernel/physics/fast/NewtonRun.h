@@ -33,8 +33,8 @@ constexpr double kMaxSoftScale = 0.1;
 // Then, for a slack net only, stages kStageFactor times stiffer each (the last intermediate one
 // at least sqrt(kStageFactor) below the material's): a tension-dominated net needs none (the jump
 // from the soft stage to the material costs four or five mixed iterations), a slack one needs
-// them because the shape of its slack parts changes with the stiffness. Each soft stage only has to bring the shape
-// near the next one: it stops at kSoftTolerance.
+// them because the shape of its slack parts changes with the stiffness. Each soft stage only has
+// to bring the shape near the next one: it stops at kSoftTolerance.
 constexpr double kStageFactor = 100;
 constexpr double kSoftTolerance = 1e-1;
 // A slack net (bars in compression at the first soft stage's equilibrium) is then taken to the
@@ -254,7 +254,8 @@ class NewtonRun {
     std::vector<Vec3>& bend_;            ///< its second-order correction c (when bent_)
     std::vector<Vec3>& bendThird_;       ///< its third-order correction e (when thirdOrder_)
     std::vector<double>& tension_;      ///< mixed stage: the bars' tension estimates, N
-    std::vector<double>& kCompression_; ///< the stage's compression stiffness per bar, N/m at scale 1
+    /// the stage's compression stiffness per bar, N/m at scale 1
+    std::vector<double>& kCompression_;
     HugePageArray& barBlock_;           ///< 9 per bar: its Hessian block
     HugePageArray& values_;             ///< the Newton matrix's blocks (SupernodalCholesky layout)
     std::vector<double>& rhs_;          ///< 3 per free knot
