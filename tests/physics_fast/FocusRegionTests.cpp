@@ -224,3 +224,4 @@ TEST_CASE("fast: a step limit or a cancel reached inside a region stops the whol
         CHECK(result.residual == residual(system));
     }
 }
+

@@ -19,9 +19,11 @@ namespace netsculpt::newton {
 /// A system with fewer free knots than this is relaxed whole to the end: a region's own analysis
 /// and its boundary's iterations would cost about what they save.
 constexpr std::size_t kFocusMinKnots = 1000;
-/// Only after the last stage has taken this many iterations since its start or its last region:
-/// one that converges quadratically takes fewer, and a region would cost it its boundary's
-/// iterations for nothing.
+/// Only in a stage at the material's stiffness (the last, and before it a slack net's stage whose
+/// compressed bars keep k_s), once it has taken this many iterations since its start or its last
+/// region: one that converges quadratically takes fewer, and a region would cost it its
+/// boundary's iterations for nothing. (Softer stages choose a slack net's shape, and a region
+/// held at its boundary chooses differently: docs/performance.md.)
 constexpr int kFocusAfter = 20;
 /// The region: the knots out of balance and this many rings of their neighbours ...
 constexpr int kFocusRings = 6;

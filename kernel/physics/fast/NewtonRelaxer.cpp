@@ -195,10 +195,12 @@ void NewtonRun::runStage(const Stage& stage, bool lastStage, bool slack) {
             stopReason_ = "precision limit";
             break;
         }
-        if (lastStage && steps_ - sinceRegion >= kFocusAfter && !(residual_ < stage.tolerance) &&
+        if (stage.scale == 1.0 && steps_ - sinceRegion >= kFocusAfter &&
+            !(residual_ < stage.tolerance) &&
             relaxRegion(stage.tolerance, mixed)) {
             sinceRegion = steps_;
-            keepIfBest();
+            if (lastStage)
+                keepIfBest();
             best = residual_;
             sinceBest = 0;
             continue;
@@ -458,8 +460,9 @@ RelaxResult FastRelaxer::relaxConnected(MassSpringSystem& system, const RelaxOpt
     NewtonRun::RegionRelax regions;
     if (focusRegions_)
         regions = [this, &system, &options, start](const std::vector<std::uint32_t>& region,
-                                                  double tolerance, std::int64_t stepsBefore) {
-            return relaxRegion(system, options, start, region, tolerance, stepsBefore);
+                                                  double tolerance, double blend,
+                                                  std::int64_t stepsBefore) {
+            return relaxRegion(system, options, start, region, tolerance, blend, stepsBefore);
         };
     NewtonRun run(system, options, *analysis_, statistics_, start, regions);
     return run.run();
@@ -600,9 +603,13 @@ RelaxResult FastRelaxer::relaxParts(MassSpringSystem& system, const RelaxOptions
 
 RelaxResult FastRelaxer::relaxRegion(MassSpringSystem& system, const RelaxOptions& options,
                                      TimePoint start, const std::vector<std::uint32_t>& region,
-                                     double tolerance, std::int64_t stepsBefore) {
+                                     double tolerance, double blend,
+                                     std::int64_t stepsBefore) {
     std::vector<std::int64_t> scratch;
     Part part = extractPart(system, region, scratch);
+    for (std::size_t b = 0; b < part.system.barCount(); ++b) // the stage's law is its material
+        part.system.kCompression[b] =
+            std::max(part.system.kCompression[b], blend * part.system.kTension[b]);
     RelaxOptions withoutHint = options;
     withoutHint.startTensions = {};
     std::vector<double> tensions;
@@ -612,7 +619,7 @@ RelaxResult FastRelaxer::relaxRegion(MassSpringSystem& system, const RelaxOption
     RelaxOptions regionOptions =
         partOptionsFor(withoutHint, part, false, stepsBefore, start, tensions, shown);
     regionOptions.tolerance = regionLevel_ ? tolerance : tolerance * newton::kFocusTolerance;
-    regionOptions.continuation = false; // from where the last stage left it
+    regionOptions.continuation = false; // from where the stage left it
     regionOptions.maxSteps = regionOptions.maxSteps >= 0
                                  ? std::min(regionOptions.maxSteps, newton::kFocusMaxSteps)
                                  : newton::kFocusMaxSteps;

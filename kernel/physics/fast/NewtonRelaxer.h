@@ -151,10 +151,11 @@ class FastRelaxer final : public Relaxer {
                                TimePoint start);
     /// The knots `region` of `system` (physics/fast/FocusRegion.h) relaxed on their own by
     /// focus_, the others held, to kFocusTolerance times `tolerance` (the stage's; a region's own
-    /// regions to the region's tolerance); its steps counted from `stepsBefore`.
+    /// regions to the region's tolerance), with the stage's compression stiffness max(k_c,
+    /// blend k_s); its steps counted from `stepsBefore`.
     RelaxResult relaxRegion(MassSpringSystem& system, const RelaxOptions& options,
                             TimePoint start, const std::vector<std::uint32_t>& region,
-                            double tolerance, std::int64_t stepsBefore);
+                            double tolerance, double blend, std::int64_t stepsBefore);
     /// A system of several independent parts (physics/fast/Components.h): each relaxed as a
     /// system of its own by a relaxer of its own (kept, so each part reuses its analysis), in
     /// the order of the parts; the statistics summed. Converged when every part is and the

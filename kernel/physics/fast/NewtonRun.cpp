@@ -422,9 +422,9 @@ bool NewtonRun::stopRequested() {
     return !stopReason_.empty();
 }
 
-/// When few knots are left out of balance (the last stage, force_ being at x_): they and rings
-/// of their neighbours relaxed on their own, the rest held (FocusRegion.h), and the stage goes
-/// on from there. False when there is no such region.
+/// When few knots are left out of balance (a stage at the material's stiffness, force_ being at
+/// x_): they and rings of their neighbours relaxed on their own under the stage's law, the rest
+/// held (FocusRegion.h), and the stage goes on from there. False when there is no such region.
 bool NewtonRun::relaxRegion(double tolerance, bool mixed) {
     if (!regions_)
         return false;
@@ -434,7 +434,7 @@ bool NewtonRun::relaxRegion(double tolerance, bool mixed) {
         return false;
     std::copy(x_.begin(), x_.end(), system_.position.begin());
     // (Its force passes are over the region only: not counted as the whole system's.)
-    steps_ += regions_(region, tolerance, steps_).steps;
+    steps_ += regions_(region, tolerance, compressionBlend_, steps_).steps;
     for (std::uint32_t j : region)
         x_[j] = system_.position[j];
     residual_ = evaluate(x_);
