@@ -147,6 +147,39 @@ TEST_CASE("focus region: some free knots as a system of their own hold the other
             CHECK(std::memcmp(&partForce[k], &wholeForce[part.knotOf[k]], sizeof(Vec3)) == 0);
 }
 
+TEST_CASE("focus region: a region relaxed in a stage whose compressed bars keep k_s has that "
+          "stage's forces",
+          "[fast]") {
+    MassSpringSystem system = compileSculpture(tube(6, 12, 2e5)).system;
+    for (std::size_t j = 0; j < system.knotCount(); ++j) // some bars compressed, some stretched
+        system.position[j] += Vec3{0.02 * std::sin(0.7 * j), 0.02 * std::cos(1.3 * j), 0};
+    const std::vector<std::uint32_t> free = freeKnotsOf(system);
+    const std::vector<std::uint32_t> region(free.begin() + 12, free.begin() + 30);
+    std::vector<std::int64_t> scratch;
+    const Part part = newton::regionSystem(system, region, 1.0, scratch);
+
+    ForceField stage(system); // the whole system at the stage: k_c raised to k_s
+    std::vector<double> raised(system.barCount());
+    for (std::size_t b = 0; b < raised.size(); ++b)
+        raised[b] = std::max(system.kCompression[b], system.kTension[b]);
+    stage.setCompressionStiffness(raised);
+    ForceField material(system), own(part.system);
+    std::vector<Vec3> stageForce(system.knotCount()), materialForce(system.knotCount()),
+        ownForce(part.system.knotCount());
+    stage.evaluate(system.position, stageForce);
+    material.evaluate(system.position, materialForce);
+    own.evaluate(part.system.position, ownForce);
+    std::size_t differing = 0; // knots where the stage's law is not the material's
+    for (std::size_t k = 0; k < part.knotOf.size(); ++k) {
+        if (part.system.fixed[k])
+            continue;
+        const std::uint32_t j = part.knotOf[k];
+        CHECK(std::memcmp(&ownForce[k], &stageForce[j], sizeof(Vec3)) == 0);
+        differing += std::memcmp(&stageForce[j], &materialForce[j], sizeof(Vec3)) != 0 ? 1 : 0;
+    }
+    CHECK(differing > 0);
+}
+
 TEST_CASE("fast: a relaxation that takes regions on their own ends in the whole's equilibrium",
           "[fast]") {
     // The banner's free edge creeps in the last stage, so a region is taken there. That edge is

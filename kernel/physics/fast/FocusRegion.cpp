@@ -38,4 +38,13 @@ std::vector<std::uint32_t> focusRegion(const ForceField& field, std::span<const 
     return region;
 }
 
+Part regionSystem(const MassSpringSystem& system, const std::vector<std::uint32_t>& region,
+                  double blend, std::vector<std::int64_t>& scratch) {
+    Part part = extractPart(system, region, scratch);
+    MassSpringSystem& own = part.system;
+    for (std::size_t b = 0; b < own.barCount(); ++b)
+        own.kCompression[b] = std::max(own.kCompression[b], blend * own.kTension[b]);
+    return part;
+}
+
 } // namespace netsculpt::newton

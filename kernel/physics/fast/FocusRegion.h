@@ -8,6 +8,7 @@
 // as a system of their own (the rest held where it is), then the whole again from there, which
 // takes the few iterations its boundary needs. Internal to kernel/physics/fast.
 #include "physics/Forces.h"
+#include "physics/fast/Components.h"
 #include "physics/MassSpringSystem.h"
 
 #include <cstdint>
@@ -45,5 +46,11 @@ constexpr std::int64_t kFocusMaxSteps = 2000;
 std::vector<std::uint32_t> focusRegion(const ForceField& field, std::span<const Vec3> force,
                                        std::span<const std::uint32_t> freeKnots,
                                        double tolerance);
+
+/// The region `region` (focusRegion()) as a system of its own (extractPart: the knots its bars
+/// reach held) under its stage's law: each bar's compression stiffness max(k_c, blend k_s), so
+/// that scale 1 of the part is the stage. `scratch`: as for extractPart.
+Part regionSystem(const MassSpringSystem& system, const std::vector<std::uint32_t>& region,
+                  double blend, std::vector<std::int64_t>& scratch);
 
 } // namespace netsculpt::newton

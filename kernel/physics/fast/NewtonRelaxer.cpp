@@ -606,10 +606,7 @@ RelaxResult FastRelaxer::relaxRegion(MassSpringSystem& system, const RelaxOption
                                      double tolerance, double blend,
                                      std::int64_t stepsBefore) {
     std::vector<std::int64_t> scratch;
-    Part part = extractPart(system, region, scratch);
-    for (std::size_t b = 0; b < part.system.barCount(); ++b) // the stage's law is its material
-        part.system.kCompression[b] =
-            std::max(part.system.kCompression[b], blend * part.system.kTension[b]);
+    Part part = newton::regionSystem(system, region, blend, scratch);
     RelaxOptions withoutHint = options;
     withoutHint.startTensions = {};
     std::vector<double> tensions;
