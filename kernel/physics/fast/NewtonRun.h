@@ -165,6 +165,10 @@ inline double secondsSince(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+/// What FastRelaxer::relax() needs of the start beyond a valid system: finite positions, a knot
+/// held by a rail, and a tension hint of one finite value per bar or none (UserError).
+void checkStart(const MassSpringSystem& system, const RelaxOptions& options);
+
 /// One stage of a run: a stiffness scale, the residual it stops at, whether it starts mixed.
 struct Stage {
     double scale;
