@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstring>
 #include <numbers>
+#include <mutex>
 #include <set>
 
 using namespace netsculpt;
@@ -254,4 +255,66 @@ TEST_CASE("parts: a part already in equilibrium is left alone, without an analys
     CHECK(edited.steps > 0);
     CHECK(fresh.statistics().partsInEquilibrium == 2);
     CHECK_FALSE(fresh.statistics().reusedAnalysis);
+}
+
+TEST_CASE("parts: relaxed at the same time, one thread each, to the bits they have in turn",
+          "[fast]") {
+    const ThreeParts t = threeParts();
+    const MassSpringSystem start = compileSculpture(t.s).system;
+    MassSpringSystem together = start, inTurn = start;
+    RelaxOptions options;
+    options.threads = 2; // two parts at a time on any machine
+    std::vector<RelaxProgress> reports;
+    std::mutex reportsMutex; // (reports come one at a time; the lock only makes the test sure)
+    options.progressInterval = 0;
+    options.progress = [&](const RelaxProgress& p) {
+        const std::lock_guard<std::mutex> lock(reportsMutex);
+        reports.push_back(p);
+    };
+    FastRelaxer both;
+    const RelaxResult a = both.relax(together, options);
+    RelaxOptions oneThread;
+    oneThread.threads = 1;
+    FastRelaxer single;
+    const RelaxResult b = single.relax(inTurn, oneThread);
+    REQUIRE(a.converged);
+    REQUIRE(b.converged);
+    CHECK(both.statistics().partsTogether == 2);
+    CHECK(single.statistics().partsTogether == 1);
+    for (std::size_t j = 0; j < start.knotCount(); ++j)
+        CHECK(sameBits(together.position[j], inTurn.position[j]));
+    CHECK(a.steps == b.steps);
+    CHECK(a.residual == residual(together));
+    CHECK(both.statistics().iterations == single.statistics().iterations);
+    CHECK(both.statistics().factorizations == single.statistics().factorizations);
+    // Reports show the whole net, the steps of all parts summed.
+    REQUIRE(reports.size() > 3);
+    for (std::size_t i = 0; i < reports.size(); ++i) {
+        CHECK(reports[i].positions.size() == start.knotCount());
+        if (i > 0)
+            CHECK(reports[i].steps >= reports[i - 1].steps);
+    }
+    CHECK(reports.back().steps == a.steps);
+}
+
+TEST_CASE("parts: a step limit, or a part with most of the knots, relaxes them in turn",
+          "[fast]") {
+    const ThreeParts t = threeParts();
+    MassSpringSystem system = compileSculpture(t.s).system;
+    RelaxOptions limited;
+    limited.threads = 2;
+    limited.maxSteps = 1000;
+    FastRelaxer relaxer;
+    REQUIRE(relaxer.relax(system, limited).converged);
+    CHECK(relaxer.statistics().partsTogether == 1);
+
+    Sculpture big = t.s; // the sheet made the largest part by far
+    setRows(big, t.sheet, 60);
+    refreshAndValidate(big);
+    MassSpringSystem lopsided = compileSculpture(big).system;
+    RelaxOptions two;
+    two.threads = 2;
+    FastRelaxer other;
+    REQUIRE(other.relax(lopsided, two).converged);
+    CHECK(other.statistics().partsTogether == 1);
 }

@@ -159,8 +159,9 @@ void runSystem(const std::string& name, MassSpringSystem start, double targetSec
                 static_cast<long long>(stats.factorizations),
                 static_cast<long long>(stats.failedFactorizations));
     if (stats.parts > 1)
-        std::printf("      %lld independent parts, relaxed one by one\n",
-                    static_cast<long long>(stats.parts));
+        std::printf("      %lld independent parts, relaxed %s\n", static_cast<long long>(stats.parts),
+                    stats.partsTogether > 1 ? "two or more at a time, one thread each"
+                                            : "one by one");
     if (stats.focusRegions > 0)
         std::printf("      %lld regions still out of balance relaxed on their own\n",
                     static_cast<long long>(stats.focusRegions));

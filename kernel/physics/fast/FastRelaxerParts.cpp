@@ -8,6 +8,10 @@
 #include "physics/fast/NewtonRun.h"
 
 #include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <thread>
 #include <string>
 #include <vector>
 
@@ -85,6 +89,36 @@ bool inEquilibrium(const ForceField& whole, const std::vector<Vec3>& force,
     return true;
 }
 
+/// A part's stop after which no other part is started.
+bool stopsTheRest(const std::string& why) {
+    return why == "time limit" || why == "step limit" || why == "cancelled";
+}
+
+/// How many of the parts `todo` to relax at the same time, each on one thread: one (in turn,
+/// each with the run's threads) unless there are two or more, the run's threads are automatic
+/// (0) or more than one, on a machine with more than one, no step limit is set (its count
+/// would depend on the order in which parts at the same time take their steps), and no part
+/// has more than kTogetherLargestShare of their free knots (a part that large would be slower
+/// on one thread than the others take together).
+std::size_t concurrentParts(const RelaxOptions& options,
+                            const std::vector<std::vector<std::uint32_t>>& components,
+                            const std::vector<std::size_t>& todo) {
+    constexpr double kTogetherLargestShare = 0.6;
+    const std::size_t threads =
+        options.threads > 0 ? static_cast<std::size_t>(options.threads)
+                            : std::max(1u, std::thread::hardware_concurrency());
+    if (todo.size() < 2 || threads < 2 || options.maxSteps >= 0)
+        return 1;
+    std::size_t total = 0, largest = 0;
+    for (std::size_t c : todo) {
+        total += components[c].size();
+        largest = std::max(largest, components[c].size());
+    }
+    if (static_cast<double>(largest) > kTogetherLargestShare * static_cast<double>(total))
+        return 1;
+    return std::min(threads, todo.size());
+}
+
 } // namespace
 
 RelaxResult FastRelaxer::relaxParts(MassSpringSystem& system, const RelaxOptions& options,
@@ -105,38 +139,22 @@ RelaxResult FastRelaxer::relaxParts(MassSpringSystem& system, const RelaxOptions
     RelaxResult result;
     result.backend = "fast";
     result.tolerance = options.tolerance;
-    std::vector<Vec3> shown; // the whole system's positions for progress reports
-    if (options.progress)
-        shown = system.position;
-    std::vector<std::int64_t> scratch;
-    std::vector<double> tensions;
     std::vector<Vec3> force(system.knotCount());
     whole.evaluate(system.position, force);
     ++result.forceEvaluations;
+    std::vector<std::size_t> todo; // the parts out of balance
     for (std::size_t c = 0; c < components.size(); ++c) {
-        if (!(options.maxSeconds - secondsSince(start) > 0)) {
-            result.stopReason = "time limit";
-            break;
-        }
-        if (inEquilibrium(whole, force, components[c], options.tolerance)) {
+        if (inEquilibrium(whole, force, components[c], options.tolerance))
             ++statistics_.partsInEquilibrium; // untouched by an edit: no step, no analysis
-            continue;
-        }
-        Part part = extractPart(system, components[c], scratch);
-        const RelaxOptions partOptions = partOptionsFor(
-            options, part, c + 1 == components.size(), result.steps, start, tensions, shown);
-        const RelaxResult partResult = parts_[c]->relax(part.system, partOptions);
-        for (std::size_t k = 0; k < part.knotOf.size(); ++k)
-            system.position[part.knotOf[k]] = part.system.position[k];
-        result.steps += partResult.steps;
-        result.forceEvaluations += partResult.forceEvaluations;
-        addPart(statistics_, parts_[c]->statistics());
-        if (!partResult.converged && result.stopReason.empty())
-            result.stopReason = partResult.stopReason;
-        const std::string& why = partResult.stopReason;
-        if (why == "time limit" || why == "step limit" || why == "cancelled")
-            break; // the other parts keep their start
+        else
+            todo.push_back(c);
     }
+    const std::size_t workers = concurrentParts(options, components, todo);
+    statistics_.partsTogether = static_cast<std::int64_t>(workers);
+    if (workers > 1)
+        relaxPartsTogether(system, options, components, todo, workers, start, result);
+    else
+        relaxPartsInTurn(system, options, components, todo, start, result);
     // Judged by the project's own measure on exactly the positions returned (the field's
     // maxResidual has the bits of residual()).
     whole.evaluate(system.position, force);
@@ -147,6 +165,134 @@ RelaxResult FastRelaxer::relaxParts(MassSpringSystem& system, const RelaxOptions
         result.stopReason = result.converged ? "converged" : "precision limit";
     result.seconds = secondsSince(start);
     return result;
+}
+
+void FastRelaxer::relaxPartsInTurn(MassSpringSystem& system, const RelaxOptions& options,
+                                   const std::vector<std::vector<std::uint32_t>>& components,
+                                   const std::vector<std::size_t>& todo, TimePoint start,
+                                   RelaxResult& result) {
+    std::vector<Vec3> shown; // the whole system's positions for progress reports
+    if (options.progress)
+        shown = system.position;
+    std::vector<std::int64_t> scratch;
+    std::vector<double> tensions;
+    for (std::size_t c : todo) {
+        if (!(options.maxSeconds - secondsSince(start) > 0)) {
+            result.stopReason = "time limit";
+            break;
+        }
+        Part part = extractPart(system, components[c], scratch);
+        const RelaxOptions partOptions = partOptionsFor(
+            options, part, c == todo.back(), result.steps, start, tensions, shown);
+        const RelaxResult partResult = parts_[c]->relax(part.system, partOptions);
+        for (std::size_t k = 0; k < part.knotOf.size(); ++k)
+            system.position[part.knotOf[k]] = part.system.position[k];
+        result.steps += partResult.steps;
+        result.forceEvaluations += partResult.forceEvaluations;
+        addPart(statistics_, parts_[c]->statistics());
+        if (!partResult.converged && result.stopReason.empty())
+            result.stopReason = partResult.stopReason;
+        if (stopsTheRest(partResult.stopReason))
+            break; // the other parts keep their start
+    }
+}
+
+void FastRelaxer::relaxPartsTogether(MassSpringSystem& system, const RelaxOptions& options,
+                                     const std::vector<std::vector<std::uint32_t>>& components,
+                                     const std::vector<std::size_t>& todo, std::size_t workers,
+                                     TimePoint start, RelaxResult& result) {
+    // Each part as a system of its own, its hint and options; the largest parts first, so that
+    // the small ones fill in at the end.
+    const std::size_t count = todo.size();
+    std::vector<Part> parts(count);
+    std::vector<std::vector<double>> tensions(count);
+    std::vector<std::int64_t> scratch;
+    for (std::size_t i = 0; i < count; ++i) {
+        parts[i] = extractPart(system, components[todo[i]], scratch);
+        if (!options.startTensions.empty())
+            for (std::uint32_t b : parts[i].barOf)
+                tensions[i].push_back(options.startTensions[b]);
+    }
+    std::vector<std::size_t> order(count);
+    for (std::size_t i = 0; i < count; ++i)
+        order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return components[todo[a]].size() > components[todo[b]].size();
+    });
+
+    // Progress reports: one at a time, the whole net as the parts have it, their steps summed.
+    std::mutex reporting;
+    std::vector<Vec3> shown = options.progress ? system.position : std::vector<Vec3>{};
+    std::vector<std::int64_t> stepsOf(count, 0);
+    std::vector<RelaxResult> results(count);
+    std::vector<char> ran(count, 0);
+    std::atomic<std::size_t> next{0};
+    std::atomic<bool> stopped{false}; // a part stopped for the time limit or a cancel
+    std::exception_ptr failure;
+    const auto work = [&] {
+        for (std::size_t n = next++; n < count; n = next++) {
+            const std::size_t i = order[n];
+            if (stopped || !(options.maxSeconds - secondsSince(start) > 0))
+                continue; // the part keeps its start
+            RelaxOptions partOptions = options;
+            partOptions.threads = 1;
+            partOptions.maxSeconds = options.maxSeconds - secondsSince(start);
+            partOptions.startTensions = tensions[i];
+            if (options.progress)
+                partOptions.progress = [&, i](const RelaxProgress& p) {
+                    const std::lock_guard<std::mutex> lock(reporting);
+                    for (std::size_t k = 0; k < p.positions.size(); ++k)
+                        shown[parts[i].knotOf[k]] = p.positions[k];
+                    stepsOf[i] = p.steps;
+                    RelaxProgress wholeProgress = p;
+                    wholeProgress.steps = 0;
+                    for (std::int64_t steps : stepsOf)
+                        wholeProgress.steps += steps;
+                    wholeProgress.seconds = secondsSince(start);
+                    wholeProgress.estimatedSecondsLeft = -1;
+                    if (!p.positions.empty())
+                        wholeProgress.positions = shown;
+                    options.progress(wholeProgress);
+                };
+            try {
+                results[i] = parts_[todo[i]]->relax(parts[i].system, partOptions);
+            } catch (...) {
+                const std::lock_guard<std::mutex> lock(reporting);
+                if (!failure)
+                    failure = std::current_exception();
+                stopped = true;
+                continue;
+            }
+            ran[i] = 1;
+            if (stopsTheRest(results[i].stopReason))
+                stopped = true;
+        }
+    };
+    std::vector<std::thread> helpers;
+    for (std::size_t t = 1; t < workers; ++t)
+        helpers.emplace_back(work);
+    work();
+    for (std::thread& helper : helpers)
+        helper.join();
+    if (failure)
+        std::rethrow_exception(failure);
+
+    // The parts' results in the order of the parts, as in turn.
+    for (std::size_t i = 0; i < count; ++i) {
+        if (!ran[i]) {
+            if (result.stopReason.empty())
+                result.stopReason = options.cancel && options.cancel->load() ? "cancelled"
+                                                                             : "time limit";
+            continue;
+        }
+        for (std::size_t k = 0; k < parts[i].knotOf.size(); ++k)
+            system.position[parts[i].knotOf[k]] = parts[i].system.position[k];
+        result.steps += results[i].steps;
+        result.forceEvaluations += results[i].forceEvaluations;
+        addPart(statistics_, parts_[todo[i]]->statistics());
+        if (!results[i].converged && result.stopReason.empty())
+            result.stopReason = results[i].stopReason;
+    }
 }
 
 RelaxResult FastRelaxer::relaxRegion(MassSpringSystem& system, const RelaxOptions& options,

@@ -98,6 +98,8 @@ struct NewtonStatistics {
     /// of them, the ones in equilibrium at the start: no step and no analysis (a part an edit of
     /// another did not touch)
     std::int64_t partsInEquilibrium = 0;
+    /// parts relaxed at the same time, each on one thread (1: one after the other)
+    std::int64_t partsTogether = 1;
     /// regions of knots still out of balance relaxed on their own, the rest of their system held
     /// (FocusRegion.h; a region's own regions included)
     std::int64_t focusRegions = 0;
@@ -163,6 +165,18 @@ class FastRelaxer final : public Relaxer {
     RelaxResult relaxParts(MassSpringSystem& system, const RelaxOptions& options,
                            const std::vector<std::vector<std::uint32_t>>& components,
                            TimePoint start);
+    /// relaxParts' parts out of balance (`todo`, indices into `components`) one after the other,
+    /// each with the run's threads ...
+    void relaxPartsInTurn(MassSpringSystem& system, const RelaxOptions& options,
+                          const std::vector<std::vector<std::uint32_t>>& components,
+                          const std::vector<std::size_t>& todo, TimePoint start,
+                          RelaxResult& result);
+    /// ... or `workers` at a time, each on one thread (the same bits: a part's result does not
+    /// depend on its threads), the largest first; their results added in the parts' order.
+    void relaxPartsTogether(MassSpringSystem& system, const RelaxOptions& options,
+                            const std::vector<std::vector<std::uint32_t>>& components,
+                            const std::vector<std::size_t>& todo, std::size_t workers,
+                            TimePoint start, RelaxResult& result);
 
     std::unique_ptr<NewtonAnalysis> analysis_;
     NewtonStatistics statistics_;
