@@ -159,22 +159,31 @@ void runSystem(const std::string& name, MassSpringSystem start, double targetSec
                 static_cast<long long>(stats.factorizations),
                 static_cast<long long>(stats.failedFactorizations));
     if (stats.parts > 1)
-        std::printf("      %lld independent parts, relaxed %s\n", static_cast<long long>(stats.parts),
-                    stats.partsTogether > 1 ? "two or more at a time, one thread each"
-                                            : "one by one");
+        std::printf(stats.partsTogether > 1
+                        ? "      %lld independent parts, relaxed %lld at a time, one thread each\n"
+                        : "      %lld independent parts, relaxed one by one\n",
+                    static_cast<long long>(stats.parts),
+                    static_cast<long long>(stats.partsTogether));
     if (stats.focusRegions > 0)
         std::printf("      %lld regions still out of balance relaxed on their own\n",
                     static_cast<long long>(stats.focusRegions));
+    // With parts at the same time the times are summed over them (thread time, not wall time).
+    const bool together = stats.partsTogether > 1;
+    const double rest =
+        result.seconds - stats.analysisSeconds - stats.factorSeconds - stats.solveSeconds;
     std::printf("      analysis %.3f s (%s ordering), factorizations %.3f s (%.3g flops each, "
-                "%.2f GFlop/s), solves %.3f s, rest %.3f s; %zu bars in compression at the end\n",
-                stats.analysisSeconds, stats.ordering, stats.factorSeconds, stats.factorFlops,
+                "%.2f GFlop/s%s), solves %.3f s", stats.analysisSeconds, stats.ordering,
+                stats.factorSeconds, stats.factorFlops,
                 stats.factorizations > 0
                     ? stats.factorFlops * static_cast<double>(stats.factorizations) /
                           stats.factorSeconds * 1e-9
                     : 0.0,
-                stats.solveSeconds,
-                result.seconds - stats.analysisSeconds - stats.factorSeconds - stats.solveSeconds,
-                compressedBars(system));
+                together ? " per thread" : "", stats.solveSeconds);
+    if (together)
+        std::printf(" (summed over the parts relaxed at the same time)");
+    else
+        std::printf(", rest %.3f s", rest);
+    std::printf("; %zu bars in compression at the end\n", compressedBars(system));
     if (!settings.rk4)
         return;
     MassSpringSystem reference = start;
