@@ -22,7 +22,7 @@ std::vector<std::vector<std::uint32_t>> freeComponents(const MassSpringSystem& s
 /// in the part: for a component, fixed knots only), and the bars with an end among them, both
 /// in the whole system's order (so each knot's bars are summed in the same order, and its force
 /// has the same bits, in either system). A component is such a set (FastRelaxer relaxes parts
-/// one by one), and so is a region of knots still out of balance (FocusRegion.h).
+/// each as a system of its own), and so is a region of knots still out of balance (FocusRegion.h).
 struct Part {
     MassSpringSystem system;
     std::vector<std::uint32_t> knotOf; ///< the whole system's knot for each of the part's knots

@@ -13,10 +13,11 @@
 // grow with the stiffness.
 //
 // How:
-// - Independent parts (physics/fast/Components.h: nets that share only rails) are relaxed one
-//   by one, each as a system of its own, so each takes its own steps and an untouched part none
-//   (a part already in equilibrium is not even analysed: the first relax after opening a
-//   relaxed sculpture and editing one part orders and factorizes that part alone).
+// - Independent parts (physics/fast/Components.h: nets that share only rails) are relaxed each as
+//   a system of its own, so each takes its own steps and an untouched part none (a part already
+//   in equilibrium is not even analysed: the first relax after opening a relaxed sculpture and
+//   editing one part orders and factorizes that part alone); as many at a time as the run has
+//   threads, one thread each, when no part dominates (FastRelaxerParts.cpp; the same bits).
 // - Near the end, once few knots are left out of balance (a free edge creeping while the rest of
 //   its net is in equilibrium), they and a few rings of neighbours are relaxed as a system of
 //   their own, the rest held, and the whole goes on from there (physics/fast/FocusRegion.h).
@@ -94,7 +95,7 @@ struct NewtonAnalysis; // the topology-dependent part of a run (NewtonRelaxer.cp
 
 /// What a FastRelaxer run did beyond RelaxResult, for tests and benchmarks.
 struct NewtonStatistics {
-    std::int64_t parts = 1;          ///< independent parts relaxed one by one (Components.h)
+    std::int64_t parts = 1;          ///< independent parts, each relaxed alone (Components.h)
     /// of them, the ones in equilibrium at the start: no step and no analysis (a part an edit of
     /// another did not touch)
     std::int64_t partsInEquilibrium = 0;
@@ -160,7 +161,7 @@ class FastRelaxer final : public Relaxer {
                             double tolerance, double blend, std::int64_t stepsBefore);
     /// A system of several independent parts (physics/fast/Components.h): each relaxed as a
     /// system of its own by a relaxer of its own (kept, so each part reuses its analysis), in
-    /// the order of the parts; the statistics summed. Converged when every part is and the
+    /// turn or at the same time; the statistics summed in the order of the parts. Converged when every part is and the
     /// whole system's residual, on the positions returned, is below the tolerance.
     RelaxResult relaxParts(MassSpringSystem& system, const RelaxOptions& options,
                            const std::vector<std::vector<std::uint32_t>>& components,
