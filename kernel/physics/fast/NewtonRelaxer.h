@@ -161,8 +161,9 @@ class FastRelaxer final : public Relaxer {
                             double tolerance, double blend, std::int64_t stepsBefore);
     /// A system of several independent parts (physics/fast/Components.h): each relaxed as a
     /// system of its own by a relaxer of its own (kept, so each part reuses its analysis), in
-    /// turn or at the same time; the statistics summed in the order of the parts. Converged when every part is and the
-    /// whole system's residual, on the positions returned, is below the tolerance.
+    /// turn or at the same time; the statistics summed in the order of the parts. Converged
+    /// when every part is and the whole system's residual, on the positions returned, is below
+    /// the tolerance.
     RelaxResult relaxParts(MassSpringSystem& system, const RelaxOptions& options,
                            const std::vector<std::vector<std::uint32_t>>& components,
                            TimePoint start);
