@@ -160,7 +160,7 @@ void runSystem(const std::string& name, MassSpringSystem start, double targetSec
                 static_cast<long long>(stats.failedFactorizations));
     if (stats.parts > 1)
         std::printf(stats.partsTogether > 1
-                        ? "      %lld independent parts, relaxed %lld at a time, one thread each\n"
+                        ? "      %lld independent parts, relaxed %lld at a time, sharing the threads\n"
                         : "      %lld independent parts, relaxed one by one\n",
                     static_cast<long long>(stats.parts),
                     static_cast<long long>(stats.partsTogether));

@@ -94,19 +94,22 @@ bool stopsTheRest(const std::string& why) {
     return why == "time limit" || why == "step limit" || why == "cancelled";
 }
 
-/// How many of the parts `todo` to relax at the same time, each on one thread: one (in turn,
-/// each with the run's threads) unless there are two or more, the run's threads are automatic
-/// (0) or more than one, on a machine with more than one, no step limit is set (its count
-/// would depend on the order in which parts at the same time take their steps), and no part
-/// has more than kTogetherLargestShare of their free knots (a part that large would be slower
-/// on one thread than the others take together).
+/// The threads a run may use: RelaxOptions::threads, or for 0 the machine's.
+std::size_t runThreads(const RelaxOptions& options) {
+    return options.threads > 0 ? static_cast<std::size_t>(options.threads)
+                               : std::max(1u, std::thread::hardware_concurrency());
+}
+
+/// How many of the parts `todo` to relax at the same time, sharing the run's threads: one (in
+/// turn, each with all of them) unless there are two or more parts, the run has two threads or
+/// more, no step limit is set (its count would depend on the order in which parts at the same
+/// time take their steps), and no part has more than kTogetherLargestShare of their free knots
+/// (a part that large would be slower on its share of the threads than the others together).
 std::size_t concurrentParts(const RelaxOptions& options,
                             const std::vector<std::vector<std::uint32_t>>& components,
                             const std::vector<std::size_t>& todo) {
     constexpr double kTogetherLargestShare = 0.6;
-    const std::size_t threads =
-        options.threads > 0 ? static_cast<std::size_t>(options.threads)
-                            : std::max(1u, std::thread::hardware_concurrency());
+    const std::size_t threads = runThreads(options);
     if (todo.size() < 2 || threads < 2 || options.maxSteps >= 0)
         return 1;
     std::size_t total = 0, largest = 0;
@@ -220,6 +223,9 @@ void FastRelaxer::relaxPartsTogether(MassSpringSystem& system, const RelaxOption
         return components[todo[a]].size() > components[todo[b]].size();
     });
 
+    // The run's threads shared out (one each on a machine of two).
+    const int threadsEach = std::max(1, static_cast<int>(runThreads(options) / workers));
+
     // Progress reports: one at a time, the whole net as the parts have it, their steps summed.
     std::mutex reporting;
     std::vector<Vec3> shown = options.progress ? system.position : std::vector<Vec3>{};
@@ -235,7 +241,7 @@ void FastRelaxer::relaxPartsTogether(MassSpringSystem& system, const RelaxOption
             if (stopped || !(options.maxSeconds - secondsSince(start) > 0))
                 continue; // the part keeps its start
             RelaxOptions partOptions = options;
-            partOptions.threads = 1;
+            partOptions.threads = threadsEach;
             partOptions.maxSeconds = options.maxSeconds - secondsSince(start);
             partOptions.startTensions = tensions[i];
             if (options.progress)

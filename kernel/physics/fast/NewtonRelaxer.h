@@ -17,7 +17,7 @@
 //   a system of its own, so each takes its own steps and an untouched part none (a part already
 //   in equilibrium is not even analysed: the first relax after opening a relaxed sculpture and
 //   editing one part orders and factorizes that part alone); as many at a time as the run has
-//   threads, one thread each, when no part dominates (FastRelaxerParts.cpp; the same bits).
+//   threads, sharing them, when no part dominates (FastRelaxerParts.cpp; the same bits).
 // - Near the end, once few knots are left out of balance (a free edge creeping while the rest of
 //   its net is in equilibrium), they and a few rings of neighbours are relaxed as a system of
 //   their own, the rest held, and the whole goes on from there (physics/fast/FocusRegion.h).
@@ -99,7 +99,7 @@ struct NewtonStatistics {
     /// of them, the ones in equilibrium at the start: no step and no analysis (a part an edit of
     /// another did not touch)
     std::int64_t partsInEquilibrium = 0;
-    /// parts relaxed at the same time, each on one thread (1: one after the other)
+    /// parts relaxed at the same time, sharing the run's threads (1: one after the other)
     std::int64_t partsTogether = 1;
     /// regions of knots still out of balance relaxed on their own, the rest of their system held
     /// (FocusRegion.h; a region's own regions included)
@@ -173,8 +173,9 @@ class FastRelaxer final : public Relaxer {
                           const std::vector<std::vector<std::uint32_t>>& components,
                           const std::vector<std::size_t>& todo, TimePoint start,
                           RelaxResult& result);
-    /// ... or `workers` at a time, each on one thread (the same bits: a part's result does not
-    /// depend on its threads), the largest first; their results added in the parts' order.
+    /// ... or `workers` at a time, sharing the run's threads (one each on a machine of two; the
+    /// same bits: a part's result does not depend on its threads), the largest first; their
+    /// results added in the parts' order.
     void relaxPartsTogether(MassSpringSystem& system, const RelaxOptions& options,
                             const std::vector<std::vector<std::uint32_t>>& components,
                             const std::vector<std::size_t>& todo, std::size_t workers,
