@@ -71,6 +71,19 @@ int componentOf(const std::vector<std::vector<std::uint32_t>>& components, std::
     return -1;
 }
 
+/// Progress reports of a system of parts: several, each with the whole net's knots, their steps
+/// never going back, the last one at the run's steps.
+void checkWholeReports(const std::vector<RelaxProgress>& reports, std::size_t knots,
+                       std::int64_t steps) {
+    REQUIRE(reports.size() > 3);
+    for (std::size_t i = 0; i < reports.size(); ++i) {
+        CHECK(reports[i].positions.size() == knots);
+        if (i > 0)
+            CHECK(reports[i].steps >= reports[i - 1].steps);
+    }
+    CHECK(reports.back().steps == steps);
+}
+
 } // namespace
 
 TEST_CASE("parts: the free knots fall into one component per independent net", "[fast]") {
@@ -159,13 +172,7 @@ TEST_CASE("parts: relaxed one by one to the whole system's equilibrium", "[fast]
     CHECK(kept.statistics().iterations == steps);
     CHECK(kept.statistics().parts == 3);
     // Progress reports show the whole net, their steps counted across the parts.
-    REQUIRE(reports.size() > 3);
-    for (std::size_t i = 0; i < reports.size(); ++i) {
-        CHECK(reports[i].positions.size() == start.knotCount());
-        if (i > 0)
-            CHECK(reports[i].steps >= reports[i - 1].steps);
-    }
-    CHECK(reports.back().steps == result.steps);
+    checkWholeReports(reports, start.knotCount(), result.steps);
 }
 
 TEST_CASE("parts: after an edit of one part the others keep their bits and take no step",
@@ -288,13 +295,7 @@ TEST_CASE("parts: relaxed at the same time, one thread each, to the bits they ha
     CHECK(both.statistics().iterations == single.statistics().iterations);
     CHECK(both.statistics().factorizations == single.statistics().factorizations);
     // Reports show the whole net, the steps of all parts summed.
-    REQUIRE(reports.size() > 3);
-    for (std::size_t i = 0; i < reports.size(); ++i) {
-        CHECK(reports[i].positions.size() == start.knotCount());
-        if (i > 0)
-            CHECK(reports[i].steps >= reports[i - 1].steps);
-    }
-    CHECK(reports.back().steps == a.steps);
+    checkWholeReports(reports, start.knotCount(), a.steps);
 }
 
 TEST_CASE("parts: a step limit, or a part with most of the knots, relaxes them in turn",
