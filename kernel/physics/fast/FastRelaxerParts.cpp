@@ -89,6 +89,20 @@ bool inEquilibrium(const ForceField& whole, const std::vector<Vec3>& force,
     return true;
 }
 
+/// A relaxed part's positions into the whole system, its steps, force passes, statistics and
+/// (the first part's that did not converge) stop reason into the whole's.
+void takePart(MassSpringSystem& system, const Part& part, const RelaxResult& partResult,
+              const NewtonStatistics& partStatistics, RelaxResult& result,
+              NewtonStatistics& statistics) {
+    for (std::size_t k = 0; k < part.knotOf.size(); ++k)
+        system.position[part.knotOf[k]] = part.system.position[k];
+    result.steps += partResult.steps;
+    result.forceEvaluations += partResult.forceEvaluations;
+    addPart(statistics, partStatistics);
+    if (!partResult.converged && result.stopReason.empty())
+        result.stopReason = partResult.stopReason;
+}
+
 /// A part's stop after which no other part is started.
 bool stopsTheRest(const std::string& why) {
     return why == "time limit" || why == "step limit" || why == "cancelled";
@@ -100,26 +114,26 @@ std::size_t runThreads(const RelaxOptions& options) {
                                : std::max(1u, std::thread::hardware_concurrency());
 }
 
-/// How many of the parts `todo` to relax at the same time, sharing the run's threads: one (in
+/// How many of the parts `toRelax` to relax at the same time, sharing the run's threads: one (in
 /// turn, each with all of them) unless there are two or more parts, the run has two threads or
 /// more, no step limit is set (its count would depend on the order in which parts at the same
 /// time take their steps), and no part has more than kTogetherLargestShare of their free knots
 /// (a part that large would be slower on its share of the threads than the others together).
 std::size_t concurrentParts(const RelaxOptions& options,
                             const std::vector<std::vector<std::uint32_t>>& components,
-                            const std::vector<std::size_t>& todo) {
+                            const std::vector<std::size_t>& toRelax) {
     constexpr double kTogetherLargestShare = 0.6;
     const std::size_t threads = runThreads(options);
-    if (todo.size() < 2 || threads < 2 || options.maxSteps >= 0)
+    if (toRelax.size() < 2 || threads < 2 || options.maxSteps >= 0)
         return 1;
     std::size_t total = 0, largest = 0;
-    for (std::size_t c : todo) {
+    for (std::size_t c : toRelax) {
         total += components[c].size();
         largest = std::max(largest, components[c].size());
     }
     if (static_cast<double>(largest) > kTogetherLargestShare * static_cast<double>(total))
         return 1;
-    return std::min(threads, todo.size());
+    return std::min(threads, toRelax.size());
 }
 
 } // namespace
@@ -145,19 +159,19 @@ RelaxResult FastRelaxer::relaxParts(MassSpringSystem& system, const RelaxOptions
     std::vector<Vec3> force(system.knotCount());
     whole.evaluate(system.position, force);
     ++result.forceEvaluations;
-    std::vector<std::size_t> todo; // the parts out of balance
+    std::vector<std::size_t> toRelax; // the parts out of balance
     for (std::size_t c = 0; c < components.size(); ++c) {
         if (inEquilibrium(whole, force, components[c], options.tolerance))
             ++statistics_.partsInEquilibrium; // untouched by an edit: no step, no analysis
         else
-            todo.push_back(c);
+            toRelax.push_back(c);
     }
-    const std::size_t workers = concurrentParts(options, components, todo);
+    const std::size_t workers = concurrentParts(options, components, toRelax);
     statistics_.partsTogether = static_cast<std::int64_t>(workers);
     if (workers > 1)
-        relaxPartsTogether(system, options, components, todo, workers, start, result);
+        relaxPartsTogether(system, options, components, toRelax, workers, start, result);
     else
-        relaxPartsInTurn(system, options, components, todo, start, result);
+        relaxPartsInTurn(system, options, components, toRelax, start, result);
     // Judged by the project's own measure on exactly the positions returned (the field's
     // maxResidual has the bits of residual()).
     whole.evaluate(system.position, force);
@@ -172,29 +186,23 @@ RelaxResult FastRelaxer::relaxParts(MassSpringSystem& system, const RelaxOptions
 
 void FastRelaxer::relaxPartsInTurn(MassSpringSystem& system, const RelaxOptions& options,
                                    const std::vector<std::vector<std::uint32_t>>& components,
-                                   const std::vector<std::size_t>& todo, TimePoint start,
+                                   const std::vector<std::size_t>& toRelax, TimePoint start,
                                    RelaxResult& result) {
     std::vector<Vec3> shown; // the whole system's positions for progress reports
     if (options.progress)
         shown = system.position;
     std::vector<std::int64_t> scratch;
     std::vector<double> tensions;
-    for (std::size_t c : todo) {
+    for (std::size_t c : toRelax) {
         if (!(options.maxSeconds - secondsSince(start) > 0)) {
             result.stopReason = "time limit";
             break;
         }
         Part part = extractPart(system, components[c], scratch);
         const RelaxOptions partOptions = partOptionsFor(
-            options, part, c == todo.back(), result.steps, start, tensions, shown);
+            options, part, c == toRelax.back(), result.steps, start, tensions, shown);
         const RelaxResult partResult = parts_[c]->relax(part.system, partOptions);
-        for (std::size_t k = 0; k < part.knotOf.size(); ++k)
-            system.position[part.knotOf[k]] = part.system.position[k];
-        result.steps += partResult.steps;
-        result.forceEvaluations += partResult.forceEvaluations;
-        addPart(statistics_, parts_[c]->statistics());
-        if (!partResult.converged && result.stopReason.empty())
-            result.stopReason = partResult.stopReason;
+        takePart(system, part, partResult, parts_[c]->statistics(), result, statistics_);
         if (stopsTheRest(partResult.stopReason))
             break; // the other parts keep their start
     }
@@ -202,25 +210,21 @@ void FastRelaxer::relaxPartsInTurn(MassSpringSystem& system, const RelaxOptions&
 
 void FastRelaxer::relaxPartsTogether(MassSpringSystem& system, const RelaxOptions& options,
                                      const std::vector<std::vector<std::uint32_t>>& components,
-                                     const std::vector<std::size_t>& todo, std::size_t workers,
+                                     const std::vector<std::size_t>& toRelax, std::size_t workers,
                                      TimePoint start, RelaxResult& result) {
-    // Each part as a system of its own, its hint and options; the largest parts first, so that
-    // the small ones fill in at the end.
-    const std::size_t count = todo.size();
+    // Each part as a system of its own (its options and hint made when it starts); the largest
+    // parts first, so that the small ones fill in at the end.
+    const std::size_t count = toRelax.size();
     std::vector<Part> parts(count);
     std::vector<std::vector<double>> tensions(count);
     std::vector<std::int64_t> scratch;
-    for (std::size_t i = 0; i < count; ++i) {
-        parts[i] = extractPart(system, components[todo[i]], scratch);
-        if (!options.startTensions.empty())
-            for (std::uint32_t b : parts[i].barOf)
-                tensions[i].push_back(options.startTensions[b]);
-    }
+    for (std::size_t i = 0; i < count; ++i)
+        parts[i] = extractPart(system, components[toRelax[i]], scratch);
     std::vector<std::size_t> order(count);
     for (std::size_t i = 0; i < count; ++i)
         order[i] = i;
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-        return components[todo[a]].size() > components[todo[b]].size();
+        return components[toRelax[a]].size() > components[toRelax[b]].size();
     });
 
     // The run's threads shared out (one each on a machine of two).
@@ -240,11 +244,10 @@ void FastRelaxer::relaxPartsTogether(MassSpringSystem& system, const RelaxOption
             const std::size_t i = order[n];
             if (stopped || !(options.maxSeconds - secondsSince(start) > 0))
                 continue; // the part keeps its start
-            RelaxOptions partOptions = options;
+            RelaxOptions partOptions =
+                partOptionsFor(options, parts[i], false, 0, start, tensions[i], shown);
             partOptions.threads = threadsEach;
-            partOptions.maxSeconds = options.maxSeconds - secondsSince(start);
-            partOptions.startTensions = tensions[i];
-            if (options.progress)
+            if (options.progress) // (in place of partOptionsFor's: one at a time, steps summed)
                 partOptions.progress = [&, i](const RelaxProgress& p) {
                     const std::lock_guard<std::mutex> lock(reporting);
                     for (std::size_t k = 0; k < p.positions.size(); ++k)
@@ -261,7 +264,7 @@ void FastRelaxer::relaxPartsTogether(MassSpringSystem& system, const RelaxOption
                     options.progress(wholeProgress);
                 };
             try {
-                results[i] = parts_[todo[i]]->relax(parts[i].system, partOptions);
+                results[i] = parts_[toRelax[i]]->relax(parts[i].system, partOptions);
             } catch (...) {
                 const std::lock_guard<std::mutex> lock(reporting);
                 if (!failure)
@@ -291,13 +294,8 @@ void FastRelaxer::relaxPartsTogether(MassSpringSystem& system, const RelaxOption
                                                                              : "time limit";
             continue;
         }
-        for (std::size_t k = 0; k < parts[i].knotOf.size(); ++k)
-            system.position[parts[i].knotOf[k]] = parts[i].system.position[k];
-        result.steps += results[i].steps;
-        result.forceEvaluations += results[i].forceEvaluations;
-        addPart(statistics_, parts_[todo[i]]->statistics());
-        if (!results[i].converged && result.stopReason.empty())
-            result.stopReason = results[i].stopReason;
+        takePart(system, parts[i], results[i], parts_[toRelax[i]]->statistics(), result,
+                 statistics_);
     }
 }
 

@@ -167,18 +167,18 @@ class FastRelaxer final : public Relaxer {
     RelaxResult relaxParts(MassSpringSystem& system, const RelaxOptions& options,
                            const std::vector<std::vector<std::uint32_t>>& components,
                            TimePoint start);
-    /// relaxParts' parts out of balance (`todo`, indices into `components`) one after the other,
+    /// relaxParts' parts out of balance (`toRelax`, indices into `components`) one after the other,
     /// each with the run's threads ...
     void relaxPartsInTurn(MassSpringSystem& system, const RelaxOptions& options,
                           const std::vector<std::vector<std::uint32_t>>& components,
-                          const std::vector<std::size_t>& todo, TimePoint start,
+                          const std::vector<std::size_t>& toRelax, TimePoint start,
                           RelaxResult& result);
     /// ... or `workers` at a time, sharing the run's threads (one each on a machine of two; the
     /// same bits: a part's result does not depend on its threads), the largest first; their
     /// results added in the parts' order.
     void relaxPartsTogether(MassSpringSystem& system, const RelaxOptions& options,
                             const std::vector<std::vector<std::uint32_t>>& components,
-                            const std::vector<std::size_t>& todo, std::size_t workers,
+                            const std::vector<std::size_t>& toRelax, std::size_t workers,
                             TimePoint start, RelaxResult& result);
 
     std::unique_ptr<NewtonAnalysis> analysis_;
