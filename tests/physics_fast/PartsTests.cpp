@@ -14,6 +14,7 @@
 #include <cstring>
 #include <numbers>
 #include <mutex>
+#include <thread>
 #include <set>
 
 using namespace netsculpt;
@@ -296,6 +297,17 @@ TEST_CASE("parts: relaxed at the same time, one thread each, to the bits they ha
     CHECK(both.statistics().factorizations == single.statistics().factorizations);
     // Reports show the whole net, the steps of all parts summed.
     checkWholeReports(reports, start.knotCount(), a.steps);
+
+    // The automatic thread count (the whole machine) takes every part at once, also where there
+    // are more parts than cores; the bits are still those of the parts in turn.
+    MassSpringSystem automatic = start;
+    FastRelaxer all;
+    const RelaxResult c = all.relax(automatic, RelaxOptions{});
+    REQUIRE(c.converged);
+    CHECK(all.statistics().partsTogether == (std::thread::hardware_concurrency() > 1 ? 3 : 1));
+    for (std::size_t j = 0; j < start.knotCount(); ++j)
+        CHECK(sameBits(automatic.position[j], inTurn.position[j]));
+    CHECK(c.steps == b.steps);
 }
 
 TEST_CASE("parts: a step limit, or a part with most of the knots, relaxes them in turn",

@@ -180,7 +180,10 @@ void runSystem(const std::string& name, MassSpringSystem start, double targetSec
                     : 0.0,
                 together ? " per thread" : "", stats.solveSeconds);
     if (together)
-        std::printf(" (summed over the parts relaxed at the same time)");
+        std::printf(" (summed over the parts relaxed at the same time%s)",
+                    stats.partsTogether > static_cast<std::int64_t>(std::thread::hardware_concurrency())
+                        ? ", each part's including its waits for a core"
+                        : "");
     else
         std::printf(", rest %.3f s", rest);
     std::printf("; %zu bars in compression at the end\n", compressedBars(system));

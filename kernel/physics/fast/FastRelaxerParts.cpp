@@ -119,10 +119,15 @@ std::size_t runThreads(const RelaxOptions& options) {
 /// more, no step limit is set (its count would depend on the order in which parts at the same
 /// time take their steps), and no part has more than kTogetherLargestShare of their free knots
 /// (a part that large would be slower on its share of the threads than the others together).
+/// Then, with a thread count given, at most that many at a time; with the automatic one (the
+/// whole machine) every part at once, up to kPartsPerThread per thread: where there are more
+/// parts than cores the system shares the cores among them, so that a part that takes long does
+/// not leave a core idle at the end while the parts queued behind it run on the other.
 std::size_t concurrentParts(const RelaxOptions& options,
                             const std::vector<std::vector<std::uint32_t>>& components,
                             const std::vector<std::size_t>& toRelax) {
     constexpr double kTogetherLargestShare = 0.6;
+    constexpr std::size_t kPartsPerThread = 4;
     const std::size_t threads = runThreads(options);
     if (toRelax.size() < 2 || threads < 2 || options.maxSteps >= 0)
         return 1;
@@ -133,7 +138,8 @@ std::size_t concurrentParts(const RelaxOptions& options,
     }
     if (static_cast<double>(largest) > kTogetherLargestShare * static_cast<double>(total))
         return 1;
-    return std::min(threads, toRelax.size());
+    const std::size_t atOnce = options.threads > 0 ? threads : kPartsPerThread * threads;
+    return std::min(atOnce, toRelax.size());
 }
 
 } // namespace
