@@ -31,15 +31,16 @@ class Dissector {
   private:
     struct Split {
         std::size_t separator = 0; ///< its node count
-        bool inLower = true;       ///< the separator is the lower half's boundary (else the upper's)
-        std::size_t middle = 0;    ///< the upper half starts at order_[middle]
+        bool inLower = true;    ///< the separator is the lower half's boundary (else the upper's)
+        std::size_t middle = 0; ///< the upper half starts at order_[middle]
     };
     Split split(std::size_t begin, std::size_t end, int axis);
 
     const GeometricGraph& graph_;
     std::vector<std::uint32_t> order_;
-    std::vector<std::uint32_t> mark_;    ///< per node: the stamp of the half it was last put in
-    std::vector<std::uint8_t> boundary_; ///< per node: has a neighbour in the other half (last split)
+    std::vector<std::uint32_t> mark_; ///< per node: the stamp of the half it was last put in
+    /// Per node: has a neighbour in the other half (last split).
+    std::vector<std::uint8_t> boundary_;
     std::vector<std::uint32_t> buffer_;
     std::vector<std::pair<double, std::uint32_t>> keys_; ///< scratch of split()
     std::uint32_t stamp_ = 0;
@@ -57,13 +58,16 @@ Dissector::Split Dissector::split(std::size_t begin, std::size_t end, int axis) 
     const std::size_t count = end - begin;
     keys_.resize(count);
     for (std::size_t k = begin; k < end; ++k)
-        keys_[k - begin] = {graph_.coordinates[order_[k]][static_cast<std::size_t>(axis)], order_[k]};
+        keys_[k - begin] = {graph_.coordinates[order_[k]][static_cast<std::size_t>(axis)],
+                            order_[k]};
     const std::size_t half = count / 2;
     const auto window = static_cast<std::size_t>(kSplitWindow * static_cast<double>(count));
     std::size_t cut = half; // the lower half is keys_[0, cut)
     if (window >= 1 && half > window) {
         const std::size_t low = half - window, high = std::min(half + window, count - 1);
-        const auto at = [&](std::size_t k) { return keys_.begin() + static_cast<std::ptrdiff_t>(k); };
+        const auto at = [&](std::size_t k) {
+            return keys_.begin() + static_cast<std::ptrdiff_t>(k);
+        };
         std::nth_element(keys_.begin(), at(low), keys_.end());
         std::nth_element(at(low), at(high), keys_.end());
         std::sort(at(low), at(high)); // keys_[low, high] in order, all others on their side
@@ -78,7 +82,8 @@ Dissector::Split Dissector::split(std::size_t begin, std::size_t end, int axis) 
             }
         }
     } else {
-        std::nth_element(keys_.begin(), keys_.begin() + static_cast<std::ptrdiff_t>(half), keys_.end());
+        std::nth_element(keys_.begin(), keys_.begin() + static_cast<std::ptrdiff_t>(half),
+                         keys_.end());
     }
     for (std::size_t k = begin; k < end; ++k)
         order_[k] = keys_[k - begin].second;
@@ -125,7 +130,9 @@ void Dissector::dissect(std::size_t begin, std::size_t end) {
         }
     }
     std::array<int, 3> axes = {0, 1, 2};
-    const auto extent = [&](int a) { return high[static_cast<std::size_t>(a)] - low[static_cast<std::size_t>(a)]; };
+    const auto extent = [&](int a) {
+        return high[static_cast<std::size_t>(a)] - low[static_cast<std::size_t>(a)];
+    };
     std::stable_sort(axes.begin(), axes.end(), [&](int a, int b) { return extent(a) < extent(b); });
     int best = -1, last = -1;
     Split chosen;
@@ -157,7 +164,8 @@ void Dissector::dissect(std::size_t begin, std::size_t end) {
         else
             buffer_[inLower ? nextLower++ : nextUpper++] = u;
     }
-    assert(nextLower == lowerCount && nextUpper == lowerCount + upperCount && nextSeparator == count);
+    assert(nextLower == lowerCount && nextUpper == lowerCount + upperCount &&
+           nextSeparator == count);
     std::copy(buffer_.begin(), buffer_.begin() + static_cast<std::ptrdiff_t>(count),
               order_.begin() + static_cast<std::ptrdiff_t>(begin));
     if (top_) {

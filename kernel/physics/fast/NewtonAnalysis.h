@@ -42,7 +42,8 @@ struct NewtonAnalysis {
     }
 
     /// `checked`: the system's force field (built, so validated, by the caller).
-    NewtonAnalysis(const MassSpringSystem& system, ForceField&& checked) : field(std::move(checked)) {
+    NewtonAnalysis(const MassSpringSystem& system, ForceField&& checked)
+        : field(std::move(checked)) {
         analyse(system);
     }
 

@@ -255,7 +255,8 @@ void SupernodalCholesky::analyse(std::size_t nodes,
                 for (int a = 0; a < 3; ++a)
                     rows_.push_back(3 * s[r] + a);
             rowStart_[k + 1] = static_cast<std::int64_t>(rows_.size());
-            valueStart_[k + 1] = valueStart_[k] + 9 * (pi[k + 1] - pi[k]) * (super[k + 1] - super[k]);
+            valueStart_[k + 1] =
+                valueStart_[k] + 9 * (pi[k + 1] - pi[k]) * (super[k + 1] - super[k]);
         }
     }
     owner.reset();
@@ -288,9 +289,12 @@ void SupernodalCholesky::analyse(std::size_t nodes,
         }
     };
     for (std::size_t d = 0; d < supers; ++d) {
-        forEachRun(d, [&](std::uint32_t target, std::int64_t, std::int64_t) { ++updateCount[target + 1]; });
+        forEachRun(d, [&](std::uint32_t target, std::int64_t, std::int64_t) {
+            ++updateCount[target + 1];
+        });
         if (superRows(d) > superColumns(d))
-            parent[d] = columnSuper_[static_cast<std::size_t>(rows_[rowStart_[d] + superColumns(d)])];
+            parent[d] =
+                columnSuper_[static_cast<std::size_t>(rows_[rowStart_[d] + superColumns(d)])];
     }
     updateStart_.assign(supers + 1, 0);
     for (std::size_t s = 0; s < supers; ++s)
@@ -375,7 +379,6 @@ void SupernodalCholesky::placeInput(std::span<const std::array<std::uint32_t, 2>
         for (std::int64_t k = 0; k < superColumns(s); ++k)
             diagonalOffset_[static_cast<std::size_t>(superStart_[s] + k)] =
                 static_cast<std::uint32_t>(k * superRows(s) + k);
-
 }
 
 /// The worker's product scratch for n doubles, at a 64-byte boundary. Eigen computes a small
@@ -609,8 +612,7 @@ void SupernodalCholesky::runSchedule(std::span<const double> values, double shif
         failed_ = true;
 }
 
-bool SupernodalCholesky::factorize(std::span<const double> values, double shift,
-                                   ThreadPool* pool) {
+bool SupernodalCholesky::factorize(std::span<const double> values, double shift, ThreadPool* pool) {
     assert(analysed_ && values.size() == 9 * (nodes_ + pairs_) && shift >= 0);
     failed_ = false;
     runSchedule(values, shift, pool);

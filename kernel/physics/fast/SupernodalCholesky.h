@@ -83,8 +83,9 @@ class SupernodalCholesky {
     void planSchedule(const std::vector<std::uint32_t>& parent);
     struct Update {
         std::uint32_t source; ///< a descendant supernode
-        std::uint32_t begin;  ///< its first row (index into its row list) inside the target's columns
-        std::uint32_t end;    ///< one past its last such row
+        /// Its first row (index into its row list) inside the target's columns.
+        std::uint32_t begin;
+        std::uint32_t end; ///< one past its last such row
     };
     struct Worker {
         std::vector<std::int64_t> position; ///< scratch: row -> position in the current supernode
@@ -111,12 +112,15 @@ class SupernodalCholesky {
 
     // Supernodal structure (CHOLMOD's), rows and columns in pivot order.
     std::vector<std::int64_t> perm_;          ///< pivot k is original unknown perm_[k]
-    std::vector<std::int64_t> superStart_;    ///< supernode s has columns [superStart_[s], superStart_[s+1])
+    /// Supernode s has columns [superStart_[s], superStart_[s+1]).
+    std::vector<std::int64_t> superStart_;
     std::vector<std::int64_t> rowStart_;      ///< its rows: rows_[rowStart_[s] .. rowStart_[s+1])
-    std::vector<std::int64_t> valueStart_;    ///< its dense column-major block at values_[valueStart_[s]]
+    /// Its dense column-major block at values_[valueStart_[s]].
+    std::vector<std::int64_t> valueStart_;
     std::vector<std::int64_t> rows_;
     std::vector<std::uint32_t> columnSuper_;  ///< column -> supernode
-    std::vector<std::int64_t> updateStart_;   ///< updates_[updateStart_[s] .. updateStart_[s+1]) into s
+    /// updates_[updateStart_[s] .. updateStart_[s+1]) into s.
+    std::vector<std::int64_t> updateStart_;
     std::vector<Update> updates_;
     // Filling a supernode from the input, block by block: supernode s takes the input blocks
     // fillBlock_[fillStart_[s] .. fillStart_[s+1]) (kTransposed set: it lands transposed), the
@@ -128,7 +132,8 @@ class SupernodalCholesky {
 
     // Schedule: tasks in a topological order; a task is one subtree (small ones, run as a whole)
     // or one supernode, ready when all the tasks it depends on are done.
-    std::vector<std::uint32_t> taskStart_;   ///< task t runs supernodes taskSupers_[taskStart_[t] .. taskStart_[t+1])
+    /// Task t runs supernodes taskSupers_[taskStart_[t] .. taskStart_[t+1]).
+    std::vector<std::uint32_t> taskStart_;
     std::vector<std::uint32_t> taskSupers_;
     std::vector<std::uint32_t> taskParent_;  ///< the task waiting for t, or UINT32_MAX
     std::vector<std::uint32_t> taskWaits_;   ///< how many tasks t waits for

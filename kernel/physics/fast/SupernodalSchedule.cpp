@@ -48,7 +48,8 @@ void SupernodalCholesky::planSchedule(const std::vector<std::uint32_t>& parent) 
     bool postordered = true;
     for (std::size_t s = 0; s < supers; ++s)
         postordered = postordered && firstInSubtree[s] + subtreeSize[s] == s + 1;
-    const double threshold = postordered ? total * kTaskShare : std::numeric_limits<double>::infinity();
+    const double threshold =
+        postordered ? total * kTaskShare : std::numeric_limits<double>::infinity();
     taskStart_.assign(1, 0);
     taskSupers_.clear();
     std::vector<std::uint32_t> taskOf(supers, kNone);

@@ -33,7 +33,8 @@ void SupernodalCholesky::solve(std::span<double> b, ThreadPool* pool) const {
     // L y' = y
     for (std::size_t s = 0; s < supers; ++s) {
         const std::int64_t below = solveForward(s, y.data(), scratch.data());
-        const std::int64_t* rows = rows_.data() + rowStart_[s] + (superStart_[s + 1] - superStart_[s]);
+        const std::int64_t* rows =
+            rows_.data() + rowStart_[s] + (superStart_[s + 1] - superStart_[s]);
         for (std::int64_t i = 0; i < below; ++i)
             y[rows[i]] -= scratch[i];
     }
@@ -114,7 +115,9 @@ void SupernodalCholesky::solveParallel(std::span<double> b, ThreadPool& pool) co
         const std::int64_t below = solveForward(s, y.data(), t.data());
         std::copy(t.data(), t.data() + below, belowProducts_.data() + belowStart_[s]);
     };
-    auto backward = [&](std::size_t s, Eigen::VectorXd& t) { solveBackward(s, y.data(), t.data()); };
+    auto backward = [&](std::size_t s, Eigen::VectorXd& t) {
+        solveBackward(s, y.data(), t.data());
+    };
 
     // Backward, a task is ready when its parent task is done.
     std::vector<std::uint32_t> childStart(tasks + 1, 0), children(tasks);
