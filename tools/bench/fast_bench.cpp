@@ -160,7 +160,8 @@ void runSystem(const std::string& name, MassSpringSystem start, double targetSec
                 static_cast<long long>(stats.failedFactorizations));
     if (stats.parts > 1)
         std::printf(stats.partsTogether > 1
-                        ? "      %lld independent parts, relaxed %lld at a time, sharing the threads\n"
+                        ? "      %lld independent parts, relaxed %lld at a time, sharing the "
+                          "threads\n"
                         : "      %lld independent parts, relaxed one by one\n",
                     static_cast<long long>(stats.parts),
                     static_cast<long long>(stats.partsTogether));
@@ -179,11 +180,11 @@ void runSystem(const std::string& name, MassSpringSystem start, double targetSec
                           stats.factorSeconds * 1e-9
                     : 0.0,
                 together ? " per thread" : "", stats.solveSeconds);
+    const auto cores = static_cast<std::int64_t>(std::thread::hardware_concurrency());
     if (together)
         std::printf(" (summed over the parts relaxed at the same time%s)",
-                    stats.partsTogether > static_cast<std::int64_t>(std::thread::hardware_concurrency())
-                        ? ", each part's including its waits for a core"
-                        : "");
+                    stats.partsTogether > cores ? ", each part's including its waits for a core"
+                                                : "");
     else
         std::printf(", rest %.3f s", rest);
     std::printf("; %zu bars in compression at the end\n", compressedBars(system));

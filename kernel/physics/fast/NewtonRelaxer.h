@@ -16,8 +16,10 @@
 // - Independent parts (physics/fast/Components.h: nets that share only rails) are relaxed each as
 //   a system of its own, so each takes its own steps and an untouched part none (a part already
 //   in equilibrium is not even analysed: the first relax after opening a relaxed sculpture and
-//   editing one part orders and factorizes that part alone); as many at a time as the run has
-//   threads, sharing them, when no part dominates (FastRelaxerParts.cpp; the same bits).
+//   editing one part orders and factorizes that part alone); several at a time when no part
+//   dominates: as many as a given thread count, sharing the threads, or with the automatic
+//   count every part at once, one thread each where they outnumber the cores
+//   (FastRelaxerParts.cpp; the same bits).
 // - Near the end, once few knots are left out of balance (a free edge creeping while the rest of
 //   its net is in equilibrium), they and a few rings of neighbours are relaxed as a system of
 //   their own, the rest held, and the whole goes on from there (physics/fast/FocusRegion.h).
