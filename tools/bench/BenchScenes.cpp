@@ -1,85 +1,24 @@
 #include "BenchScenes.h"
 
 #include "model/Compiler.h"
-#include "model/Edits.h"
-
-#include <cmath>
-#include <numbers>
+#include "model/ReferenceSculptures.h"
 
 namespace netsculpt::bench {
-
-namespace {
-
-/// A closed rail of `columns` vertices kSpacing apart, so that the top knots sit at its vertices.
-CurveSpec circularRail(int columns) {
-    CurveSpec circle;
-    circle.closed = true;
-    const double radius = columns * kSpacing / (2 * std::numbers::pi);
-    for (int i = 0; i < columns; ++i) {
-        const double angle = 2 * std::numbers::pi * i / columns;
-        circle.points.push_back({radius * std::cos(angle), radius * std::sin(angle), 0});
-    }
-    return circle;
-}
-
-PieceId attachNet(Sculpture& s, RailId rail, int rows, int columns) {
-    AttachToRailArgs args;
-    args.rail = rail;
-    args.columns = columns;
-    args.rows = rows;
-    args.bar = kBar;
-    return attachToRail(s, args);
-}
-
-MassSpringSystem compiledWith(Sculpture& s, PieceId piece, const Material& material) {
-    setMaterial(s, piece, material);
-    refreshAndValidate(s);
-    return compileSculpture(s).system;
-}
-
-} // namespace
 
 Material realisticRope() {
     return Material{2e5, 0.01, 0.002, 0.006};
 }
 
 MassSpringSystem tubeOnCircularRail(int rows, int columns, const Material& material) {
-    Sculpture s;
-    const RailId top = addRail(s, "top", circularRail(columns));
-    const PieceId tube = attachNet(s, top, rows, columns);
-    return compiledWith(s, tube, material);
+    return compileSculpture(netsculpt::tubeOnCircularRail(rows, columns, material)).system;
 }
 
 MassSpringSystem sheetBetweenParallelRails(int rows, int columns, const Material& material) {
-    const double width = (columns - 1) * kSpacing;
-    const double height = (rows - 1) * std::sqrt(kBar * kBar - kSpacing * kSpacing / 4);
-    CurveSpec upper, lower;
-    upper.points = {{0, 0, 0}, {width, 0, 0}};
-    lower.points = {{0, 0.3 * height, -0.5 * height}, {width, 0.3 * height, -0.5 * height}};
-    Sculpture s;
-    const RailId top = addRail(s, "top", upper);
-    const RailId bottom = addRail(s, "bottom", lower);
-    const PieceId sheet = attachNet(s, top, rows, columns);
-    connectToRail(s, sheet, bottom, 0.0, false);
-    return compiledWith(s, sheet, material);
+    return compileSculpture(netsculpt::sheetBetweenParallelRails(rows, columns, material)).system;
 }
 
 MassSpringSystem bannerOnWavyRail(int rows, int columns, const Material& material) {
-    CurveSpec wave;
-    wave.spline = true;
-    wave.degree = 3;
-    wave.points = {{0, 0, 12.5}, {1, 0.8, 13.0}, {2, 0, 12.5}, {3, 0.8, 13.0}, {4, 0, 12.5}};
-    Sculpture s;
-    const RailId rail = addRail(s, "wave", wave);
-    AttachToRailArgs args;
-    args.rail = rail;
-    args.columns = columns;
-    args.rows = rows;
-    args.bar = 0.12;
-    const PieceId banner = attachToRail(s, args);
-    setBarLengthByRow(s, banner, 0, 0.1);
-    setBarLengthByRow(s, banner, rows - 1, 0.14);
-    return compiledWith(s, banner, material);
+    return compileSculpture(netsculpt::bannerOnWavyRail(rows, columns, material)).system;
 }
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
