@@ -5,38 +5,20 @@
 #include "commands/Document.h"
 #include "commands/Journal.h"
 #include "model/Error.h"
+#include "model/TestSculptures.h"
 
 #include <catch2/catch.hpp>
 
 #include <atomic>
 #include <bit>
-#include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <numbers>
 #include <sstream>
 #include <string>
 
 #include <unistd.h>
 
 namespace netsculpt::test {
-
-/// A closed polyline: a regular polygon of n vertices, radius r, at height z.
-inline CurveSpec ringSpec(int n, double r, double z) {
-    CurveSpec spec;
-    spec.closed = true;
-    for (int i = 0; i < n; ++i) {
-        const double a = 2 * std::numbers::pi * i / n;
-        spec.points.push_back({r * std::cos(a), r * std::sin(a), z});
-    }
-    return spec;
-}
-
-inline CurveSpec lineSpec(Vec3 a, Vec3 b) {
-    CurveSpec spec;
-    spec.points = {a, b};
-    return spec;
-}
 
 /// A folder under /dev/shm (fast: fsync is free there) or the system's temp folder, removed at
 /// the end of the test.
@@ -108,9 +90,9 @@ inline void requireSameSystem(const CompiledSculpture& a, const CompiledSculptur
 /// rail 1 (12 columns, 6 rows, bar 0.4 m).
 inline Document fixtureDocument() {
     Document doc;
-    doc.execute(AddRailCommand{"top", ringSpec(12, 1.0, 3.0)});
-    doc.execute(AddRailCommand{"line", lineSpec({-2, 3, 3}, {2, 3, 3})});
-    doc.execute(AddRailCommand{"bottom", ringSpec(12, 1.0, 0.0)});
+    doc.execute(AddRailCommand{"top", polygonRail(12, 1.0, 3.0)});
+    doc.execute(AddRailCommand{"line", lineRail({-2, 3, 3}, {2, 3, 3})});
+    doc.execute(AddRailCommand{"bottom", polygonRail(12, 1.0, 0.0)});
     AttachToRailArgs args;
     args.rail = RailId(1);
     args.columns = 12;

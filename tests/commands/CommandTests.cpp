@@ -30,8 +30,8 @@ struct Case {
 /// z = 1.2 m, like the installation's core and bell.
 Document skirtTiedBelow() {
     Document doc;
-    doc.execute(AddRailCommand{"top", ringSpec(24, 1.0, 3.0)});
-    doc.execute(AddRailCommand{"tie", ringSpec(24, 1.3, 1.2)});
+    doc.execute(AddRailCommand{"top", polygonRail(24, 1.0, 3.0)});
+    doc.execute(AddRailCommand{"tie", polygonRail(24, 1.3, 1.2)});
     doc.execute(attach(1, 24, 10, 0.2));
     doc.execute(hang(1, Gear{2, 1}, 8, 0.16));
     doc.execute(ConnectToRailCommand{PieceId(2), RailId(2), 0.0, false});
@@ -52,11 +52,11 @@ std::vector<Case> everyCommand() {
     material.compressionRatio = 0.02;
     material.knotMass = 0.003;
     material.linearDensity = 0.004;
-    ImportRailsCommand import{"rails.csv", {{"a", lineSpec({0, 0, 5}, {1, 0, 5})}, {"b", ringSpec(8, 0.5, 5)}}};
+    ImportRailsCommand import{"rails.csv", {{"a", lineRail({0, 0, 5}, {1, 0, 5})}, {"b", polygonRail(8, 0.5, 5)}}};
     return {
-        {"add_rail", none, AddRailCommand{"extra", ringSpec(7, 0.7, 4)}},
+        {"add_rail", none, AddRailCommand{"extra", polygonRail(7, 0.7, 4)}},
         {"add_rail (B-spline)", none, [] {
-             CurveSpec spec = ringSpec(8, 1.2, 4);
+             CurveSpec spec = polygonRail(8, 1.2, 4);
              spec.spline = true;
              spec.degree = 3;
              return Command{AddRailCommand{"smooth", spec}};
@@ -135,7 +135,7 @@ TEST_CASE("every command applies, undoes and redoes bit for bit") {
 TEST_CASE("undo restores exactly the shape the document had, relaxed or not") {
     Document doc = fixtureDocument();
     // the tube's last row on a ring 1.4 m below the top one: a net that relaxes in well under a second
-    doc.execute(AddRailCommand{"low", ringSpec(12, 1.0, 1.6)});
+    doc.execute(AddRailCommand{"low", polygonRail(12, 1.0, 1.6)});
     const CompiledSculpture hanging = doc.compiled();
     doc.execute(ConnectToRailCommand{PieceId(1), RailId(4), 0.0, false});
     DocumentRelaxOptions options;
@@ -433,7 +433,7 @@ TEST_CASE("every invalid input is refused with its value, leaving model, history
     nanMass.knotMass = nan;
     CurveSpec onePoint;
     onePoint.points = {{0, 0, 1}};
-    CurveSpec nanPoint = lineSpec({0, 0, 1}, {nan, 0, 1});
+    CurveSpec nanPoint = lineRail({0, 0, 1}, {nan, 0, 1});
     AttachToRailArgs both;
     both.rail = RailId(1);
     both.columns = 12;

@@ -18,7 +18,7 @@ namespace {
 /// The k-th action of the child (a deterministic function of k, always valid after k - 1).
 void applyAction(Document& doc, std::uint64_t k) {
     if (k == 0) {
-        doc.execute(AddRailCommand{"top", ringSpec(12, 1.0, 3.0)});
+        doc.execute(AddRailCommand{"top", polygonRail(12, 1.0, 3.0)});
         return;
     }
     if (k == 1) {

@@ -43,8 +43,8 @@ std::string joinLines(const std::vector<std::string>& lines) {
 Document journaledDocument(const std::filesystem::path& path) {
     Document doc;
     doc.attachJournal(path);
-    doc.execute(AddRailCommand{"top", ringSpec(12, 1.0, 3.0)});
-    doc.execute(AddRailCommand{"bottom", ringSpec(12, 1.0, 0.0)});
+    doc.execute(AddRailCommand{"top", polygonRail(12, 1.0, 3.0)});
+    doc.execute(AddRailCommand{"bottom", polygonRail(12, 1.0, 0.0)});
     doc.execute(attach(1, 12, 6, 0.4));
     doc.execute(hang(1, Gear{2, 1}, 3, 0.3));
     doc.execute(SetRowsCommand{PieceId(2), 4}, true);
@@ -315,7 +315,7 @@ TEST_CASE("journal versions and headers") {
             Document doc = Document::open(path, &warnings);
             CHECK(warnings.size() == 1);
             CHECK(doc.hash() == hashSculpture(Sculpture{}));
-            doc.execute(AddRailCommand{"r", ringSpec(5, 1, 1)});
+            doc.execute(AddRailCommand{"r", polygonRail(5, 1, 1)});
             CHECK(entriesOf(path).size() == 1);
             CHECK_THAT(readBytes(path), StartsWith("netsculpt-journal 1\n"));
         }
@@ -428,7 +428,7 @@ TEST_CASE("arrays nested 100,000 deep in a journal or a snapshot are refused as 
 
     // Brackets inside a string are text, not nesting.
     Document named;
-    named.execute(AddRailCommand{"[{" + std::string(150, '[') + "\\\"", ringSpec(12, 1.0, 3.0)});
+    named.execute(AddRailCommand{"[{" + std::string(150, '[') + "\\\"", polygonRail(12, 1.0, 3.0)});
     named.save(dir / "named.netj");
     CHECK(Document::open(dir / "named.netj").hash() == named.hash());
 }
@@ -453,8 +453,8 @@ TEST_CASE("a snapshot whose knots are too far apart for their forces starts from
 TEST_CASE("a journal becomes the equivalent Lua script") {
     TempDir dir;
     Document doc = journaledDocument(dir / "j.netj");
-    doc.execute(ImportRailsCommand{"rails/ring.csv", {{"imported", lineSpec({0, 0, 4}, {1, 0.5, 4})}}});
-    CurveSpec spline = ringSpec(6, 1.5, 5);
+    doc.execute(ImportRailsCommand{"rails/ring.csv", {{"imported", lineRail({0, 0, 4}, {1, 0.5, 4})}}});
+    CurveSpec spline = polygonRail(6, 1.5, 5);
     spline.spline = true;
     spline.degree = 2;
     spline.sampling = Sampling::Parameter;
@@ -494,7 +494,7 @@ TEST_CASE("a journal becomes the equivalent Lua script") {
 
 TEST_CASE("a long journal's Lua keeps handles in tables (Lua allows 200 locals)") {
     Document doc;
-    doc.execute(AddRailCommand{"top", ringSpec(12, 1.0, 3.0)});
+    doc.execute(AddRailCommand{"top", polygonRail(12, 1.0, 3.0)});
     for (int i = 0; i < 160; ++i) doc.execute(attach(1, 6, 1, 0.6));
     doc.execute(RemovePieceCommand{PieceId(160)});
     const std::string lua = doc.toLua();

@@ -47,7 +47,7 @@ class RandomEditor {
     CurveSpec curve() {
         const int kind = pick(0, 9);
         if (kind <= 5) {
-            CurveSpec spec = ringSpec(pick(5, 12), real(0.8, 1.6), kind == 0 ? 0.0 : real(2, 4));
+            CurveSpec spec = polygonRail(pick(5, 12), real(0.8, 1.6), kind == 0 ? 0.0 : real(2, 4));
             if (kind == 5) {
                 spec.spline = true;
                 spec.degree = pick(2, 3);
@@ -55,11 +55,11 @@ class RandomEditor {
             return spec;
         }
         if (kind == 9) { // invalid: a single point or a NaN
-            CurveSpec spec = lineSpec({0, 0, 3}, {chance(0.5) ? std::nan("") : 0.0, 0, 3});
+            CurveSpec spec = lineRail({0, 0, 3}, {chance(0.5) ? std::nan("") : 0.0, 0, 3});
             return spec;
         }
         const double half = real(0.5, 3);
-        return lineSpec({-half, real(-1, 1), 3}, {half, real(-1, 1), real(2.5, 3.5)});
+        return lineRail({-half, real(-1, 1), 3}, {half, real(-1, 1), real(2.5, 3.5)});
     }
 
     /// The next action: a command (with a merge flag) or undo / redo / end of gesture.

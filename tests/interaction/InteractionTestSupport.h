@@ -3,32 +3,15 @@
 // layer with the same events a window would send (move, press, release, key).
 
 #include "interaction/Interaction.h"
+#include "model/TestSculptures.h"
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <filesystem>
-#include <numbers>
 #include <unistd.h>
 
 namespace netsculpt::test {
-
-/// A closed polygon rail of n vertices, radius r, at height z.
-inline CurveSpec ringRail(int n, double r, double z) {
-    CurveSpec spec;
-    spec.closed = true;
-    for (int i = 0; i < n; ++i) {
-        const double a = 2 * std::numbers::pi * i / n;
-        spec.points.push_back({r * std::cos(a), r * std::sin(a), z});
-    }
-    return spec;
-}
-
-inline CurveSpec lineRail(Vec3 a, Vec3 b) {
-    CurveSpec spec;
-    spec.points = {a, b};
-    return spec;
-}
 
 /// The fixed camera every test looks through: 1000 x 800 px, looking at (0, 0, 1.5) from the
 /// front-left and above.
@@ -51,8 +34,8 @@ struct Scene {
     PieceId net;
 
     Scene() {
-        crown = doc.execute(AddRailCommand{"crown", ringRail(24, 2.0, 3.0)}).rails.front();
-        ring = doc.execute(AddRailCommand{"ring", ringRail(24, 0.8, 0.0)}).rails.front();
+        crown = doc.execute(AddRailCommand{"crown", polygonRail(24, 2.0, 3.0)}).rails.front();
+        ring = doc.execute(AddRailCommand{"ring", polygonRail(24, 0.8, 0.0)}).rails.front();
         beam = doc.execute(AddRailCommand{"beam", lineRail({2.5, -1, 3.5}, {2.5, 1, 3.5})}).rails.front();
         AttachToRailArgs args;
         args.rail = crown;
