@@ -4,6 +4,7 @@
 // row), solved in this test by Newton's method on 2 (rows - 1) equations.
 
 #include "../model/TestSculptures.h"
+#include "HangGuard.h"
 #include "DampedNewton.h"
 
 #include "physics/Forces.h"
@@ -107,9 +108,7 @@ TEST_CASE("A relaxed tube matches the axisymmetric reduction of the model", "[co
     const PieceId piece(1);
     RelaxOptions options;
     options.tolerance = 1e-9;
-    // Only a guard against a hang: under 1 s in Release; 60 s ran out in the sanitized debug
-    // build on a busy machine.
-    options.maxSeconds = 900;
+    options.maxSeconds = kHangGuardSeconds; // under 1 s in Release
     const RelaxResult result = relaxRk4(sys, options);
     REQUIRE(result.converged);
     // Newton on the reduced equations, started from the relaxed rows: the reduction is derived

@@ -1,5 +1,6 @@
 // The overdamped RK4 relaxation (Eq. 7) against independent solutions and its contracts.
 // Materials are soft (EA 50..100 N) so that each case converges in well under a second.
+#include "HangGuard.h"
 #include "ShapeDistance.h"
 #include "model/Error.h"
 #include "physics/Forces.h"
@@ -210,9 +211,7 @@ TEST_CASE("Wind: the rails take the weight and the wind's total force", "[relax]
     RelaxOptions options;
     options.tolerance = 1e-7;
     options.wind = Wind{{0, 2, 0}, 0.05};
-    // Only a guard against a hang: under 1 s in Release; the sanitized debug build ran out of the
-    // default 60 s on a busy machine.
-    options.maxSeconds = 900;
+    options.maxSeconds = test::kHangGuardSeconds; // under 1 s in Release
     REQUIRE(relaxRk4(sheet, options).converged);
     CHECK(residual(sheet, options.wind) < options.tolerance);
     CHECK(residual(sheet) > 1e-3); // without the wind it is not in balance
@@ -238,9 +237,7 @@ TEST_CASE("A violent start never leaves NaN and still relaxes", "[relax][robust]
             sheet.position[j] = sheet.position[j] * 1000.0 + Vec3{0, 0, -50}; // stretched 1000x
     RelaxOptions options;
     options.tolerance = 1e-6;
-    // Only a guard against a hang: 0.4 s in Release, 15 s for both runs in the sanitized debug
-    // build, where a cap of 10 s failed on a busy machine.
-    options.maxSeconds = 120;
+    options.maxSeconds = test::kHangGuardSeconds; // 0.4 s in Release
     const RelaxResult result = relaxRk4(sheet, options);
     CHECK(allFinite(sheet));
     CHECK(std::isfinite(result.residual));

@@ -1,6 +1,7 @@
 // The Bullet cross-check backend (kernel/physics/bullet/BulletRelaxer.h): its shape against the
 // RK4 backend's on four sculptures built with the model's edits, and its contract as a Relaxer.
 
+#include "HangGuard.h"
 #include "physics_bullet/Sculptures.h"
 
 #include "model/Error.h"
@@ -82,12 +83,11 @@ std::vector<Builder> fourSculptures(double barSpread) {
     };
 }
 
-/// Convergence and step limits decide these tests; the time limit only guards against a hang (a
-/// run of 1.5 s in Release ran out of 20 s in the sanitized debug build on a busy machine).
+/// Convergence and step limits decide these tests, not the time limit.
 RelaxOptions options(double tolerance) {
     RelaxOptions o;
     o.tolerance = tolerance;
-    o.maxSeconds = 900;
+    o.maxSeconds = kHangGuardSeconds;
     return o;
 }
 

@@ -170,8 +170,6 @@ void runSystem(const std::string& name, MassSpringSystem start, double targetSec
                     static_cast<long long>(stats.focusRegions));
     // With parts at the same time the times are summed over them (thread time, not wall time).
     const bool together = stats.partsTogether > 1;
-    const double rest =
-        result.seconds - stats.analysisSeconds - stats.factorSeconds - stats.solveSeconds;
     std::printf("      analysis %.3f s (%s ordering), factorizations %.3f s (%.3g flops each, "
                 "%.2f GFlop/s%s), solves %.3f s", stats.analysisSeconds, stats.ordering,
                 stats.factorSeconds, stats.factorFlops,
@@ -186,7 +184,9 @@ void runSystem(const std::string& name, MassSpringSystem start, double targetSec
                     stats.partsTogether > cores ? ", each part's including its waits for a core"
                                                 : "");
     else
-        std::printf(", rest %.3f s", rest);
+        std::printf(", rest %.3f s",
+                    result.seconds - stats.analysisSeconds - stats.factorSeconds -
+                        stats.solveSeconds);
     std::printf("; %zu bars in compression at the end\n", compressedBars(system));
     if (!settings.rk4)
         return;
