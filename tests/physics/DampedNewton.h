@@ -32,4 +32,21 @@ template <typename F> Eigen::VectorXd dampedNewton(const F& f, Eigen::VectorXd x
     return x;
 }
 
+/// Solves f(1, x) = 0 from x, f(scale, x) being a net's forces with its bars' stiffness times
+/// scale: by continuation when `stiffness` (EA, N) is above kSoftStiffness, from a chain that
+/// soft up by thirds of a decade, each stage from the last one's root. From a start that is
+/// millimetres off, a stiff net's Newton step turns its bars and stretches them by many knot
+/// weights, and the damped steps stall above the rounding's floor.
+constexpr double kSoftStiffness = 50;
+template <typename F>
+Eigen::VectorXd dampedNewtonFromSoft(const F& f, Eigen::VectorXd x, double stiffness) {
+    const double ratio = stiffness / kSoftStiffness;
+    const int stages = ratio > 1 ? static_cast<int>(std::ceil(3 * std::log10(ratio))) : 0;
+    for (int stage = stages; stage >= 0; --stage) {
+        const double scale = std::pow(10.0, -stage / 3.0);
+        x = dampedNewton([&](const Eigen::VectorXd& y) { return f(scale, y); }, x);
+    }
+    return x;
+}
+
 } // namespace netsculpt::test

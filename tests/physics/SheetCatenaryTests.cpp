@@ -18,16 +18,11 @@
 #include "physics/EigenDense.h"
 
 #include <algorithm>
-#include <cmath>
 
 using namespace netsculpt;
 using namespace netsculpt::test;
 
 namespace {
-
-// The stiffest chain (EA, N) the reduction's damped Newton solves from the relaxed sheet's middle
-// column directly; a stiffer one goes through softer chains first.
-constexpr double kSoftChainStiffness = 50;
 
 struct SheetCase {
     int columns = 61;      // spacing 0.1 m on a 6 m rail
@@ -54,10 +49,8 @@ Eigen::Vector2d pairForce(double y, double z, double y2, double z2, double s, do
     return Eigen::Vector2d(2 * t * d.y(), 2 * t * d.z());
 }
 
-/// The rows' (y, z) of the reduction, by damped Newton from a starting guess. A chain stiffer
-/// than kSoftChainStiffness is solved by continuation: from that stiffness up by thirds of a
-/// decade, each stage from the last one's solution (from the relaxed sheet's column at once, a
-/// Newton step of millimetres turns the stiff links and stretches them by many knot weights).
+/// The rows' (y, z) of the reduction, by damped Newton from a starting guess (a stiff rope's
+/// through softer chains first).
 std::vector<Eigen::Vector2d> solveReduction(const SheetCase& k, std::vector<Eigen::Vector2d> rows) {
     const double s = k.length / (k.columns - 1);
     const double mass = k.material.knotMass + 0.5 * k.material.linearDensity * 4 * k.bar;
@@ -77,14 +70,8 @@ std::vector<Eigen::Vector2d> solveReduction(const SheetCase& k, std::vector<Eige
     };
     Eigen::VectorXd x(2 * n);
     for (int r = 1; r <= n; ++r) x.segment<2>(2 * (r - 1)) = rows[r];
-    const double toSoft = k.material.stiffness / kSoftChainStiffness;
-    const int stages = toSoft > 1 ? static_cast<int>(std::ceil(3 * std::log10(toSoft))) : 0;
-    for (int stage = stages; stage >= 0; --stage) {
-        const double scale = std::pow(10.0, -stage / 3.0);
-        x = dampedNewton([&](const Eigen::VectorXd& y) { return residualAt(scale, y); }, x);
-    }
-    const auto residual = [&](const Eigen::VectorXd& y) { return residualAt(1.0, y); };
-    REQUIRE(residual(x).lpNorm<Eigen::Infinity>() < k.reductionResidual);
+    x = dampedNewtonFromSoft(residualAt, x, k.material.stiffness);
+    REQUIRE(residualAt(1.0, x).lpNorm<Eigen::Infinity>() < k.reductionResidual);
     for (int r = 1; r <= n; ++r) rows[r] = x.segment<2>(2 * (r - 1));
     return rows;
 }
