@@ -1,8 +1,10 @@
 #pragma once
 // A small damped Newton solver for the tests' independent reference problems (reductions of a
 // net to a few unknowns): central-difference Jacobian, full-pivot LU, step halving until the
-// residual norm decreases. (A one-sided difference carries the second-order stretch of the bars
-// it turns, which swamps a stiff rope's soft directions: Newton then stalls.)
+// residual norm decreases. The differences are central and short (1e-8 m) for the real rope:
+// its stiff bars' forces curve sharply, and a one-sided difference, or a central one of 1e-7 m,
+// left the Jacobian's soft directions so far off that Newton crept linearly and stalled above
+// the rounding's floor (in an unoptimized build by 5e-8 N).
 
 #include "physics/EigenDense.h"
 
@@ -19,7 +21,7 @@ template <typename F> Eigen::VectorXd dampedNewton(const F& f, Eigen::VectorXd x
         Eigen::MatrixXd jacobian(x.size(), x.size());
         for (Eigen::Index j = 0; j < x.size(); ++j) {
             Eigen::VectorXd ahead = x, behind = x;
-            const double h = 1e-7 * std::max(1.0, std::abs(x[j]));
+            const double h = 1e-8 * std::max(1.0, std::abs(x[j]));
             ahead[j] += h;
             behind[j] -= h;
             jacobian.col(j) = (f(ahead) - f(behind)) / (2 * h);
