@@ -1,10 +1,9 @@
 #pragma once
 // A small damped Newton solver for the tests' independent reference problems (reductions of a
-// net to a few unknowns): central-difference Jacobian, full-pivot LU, step halving until the
-// residual norm decreases. The differences are central and short (1e-8 m) for the real rope:
-// its stiff bars' forces curve sharply, and a one-sided difference, or a central one of 1e-7 m,
-// left the Jacobian's soft directions so far off that Newton crept linearly and stalled above
-// the rounding's floor (in an unoptimized build by 5e-8 N).
+// net to a few unknowns): Jacobian by central differences of 1e-8 m, full-pivot LU, step
+// halving until the residual norm decreases. (The real rope's stiff bars' forces curve sharply:
+// with one-sided differences, or central ones of 1e-7 m, the Jacobian's soft directions were so
+// far off that Newton crept linearly and stalled above the rounding's floor.)
 
 #include "physics/EigenDense.h"
 
@@ -35,10 +34,10 @@ template <typename F> Eigen::VectorXd dampedNewton(const F& f, Eigen::VectorXd x
 }
 
 /// Solves f(1, x) = 0 from x, f(scale, x) being a net's forces with its bars' stiffness times
-/// scale: by continuation when `stiffness` (EA, N) is above kSoftStiffness, from a chain that
-/// soft up by thirds of a decade, each stage from the last one's root. From a start that is
-/// millimetres off, a stiff net's Newton step turns its bars and stretches them by many knot
-/// weights, and the damped steps stall above the rounding's floor.
+/// scale. When `stiffness` (EA, N) is above kSoftStiffness, by continuation: from that stiffness
+/// up by thirds of a decade, each stage from the last one's root. (From a start millimetres off,
+/// a stiff net's Newton step turns its bars and stretches them by many knot weights, and the
+/// damped steps stall above the rounding's floor.)
 constexpr double kSoftStiffness = 50;
 template <typename F>
 Eigen::VectorXd dampedNewtonFromSoft(const F& f, Eigen::VectorXd x, double stiffness) {
