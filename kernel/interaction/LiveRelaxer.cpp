@@ -50,6 +50,10 @@ double previewScale(const MassSpringSystem& system, double requested) {
     return std::clamp(std::max(requested, 20 * meanHeldLoad / minAxialStiffness), 1e-9, 1.0);
 }
 
+int threadsBesideTheFrames() {
+    return static_cast<int>(std::max(2u, std::thread::hardware_concurrency()) - 1);
+}
+
 LiveRelaxer::LiveRelaxer(LiveRelaxOptions options) : options_(std::move(options)), worker_([this] { workerLoop(); }) {}
 
 LiveRelaxer::~LiveRelaxer() {

@@ -56,6 +56,10 @@ struct LiveRelaxOptions {
     std::function<void(const LiveState&)> onPublish;
 };
 
+/// The threads the studio gives its live preview: every hardware thread but one, kept for drawing
+/// frames (with a software renderer the frames need a core of their own), and at least one.
+int threadsBesideTheFrames();
+
 enum class LivePhase { Idle, Preview, Refine };
 
 /// One published shape and how the run stands. Immutable once published.

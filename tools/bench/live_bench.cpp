@@ -16,6 +16,8 @@
 //   netsculpt-bench-live --knots N       another size      --steps N   steps per drag
 //   --backend NAME                       the preview's backend (default: the studio's)
 //   --preview-scale S                    the preview's stiffness scale (default: the studio's)
+//   --threads N                          the preview's threads (default: the studio's, every
+//                                        hardware thread but the one it keeps for its frames)
 //   --only bar|rows                      one of the two drags (for profiling)
 
 #include "commands/Document.h"
@@ -185,12 +187,15 @@ int main(int argc, char** argv) {
     int knots = 20000, steps = 20;
     std::string only;
     LiveRelaxOptions options; // the studio's
+    options.threads = threadsBesideTheFrames();
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         if (arg == "--knots" && i + 1 < argc)
             knots = std::atoi(argv[++i]);
         else if (arg == "--steps" && i + 1 < argc)
             steps = std::atoi(argv[++i]);
+        else if (arg == "--threads" && i + 1 < argc)
+            options.threads = std::atoi(argv[++i]);
         else if (arg == "--preview-scale" && i + 1 < argc)
             options.previewStiffnessScale = std::atof(argv[++i]);
         else if (arg == "--backend" && i + 1 < argc)
@@ -200,12 +205,14 @@ int main(int argc, char** argv) {
             only = argv[++i];
         else {
             std::fprintf(stderr, "usage: %s [--knots N] [--steps N] [--backend NAME] "
-                                 "[--preview-scale S] [--only bar|rows]\n", argv[0]);
+                                 "[--preview-scale S] [--threads N] [--only bar|rows]\n",
+                         argv[0]);
             return 2;
         }
     }
-    if (knots < 100 || steps < 1) {
-        std::fprintf(stderr, "netsculpt-bench-live: --knots must be >= 100 and --steps >= 1\n");
+    if (knots < 100 || steps < 1 || options.threads < 1) {
+        std::fprintf(stderr, "netsculpt-bench-live: --knots must be >= 100, --steps and "
+                             "--threads >= 1\n");
         return 2;
     }
     try {
@@ -215,10 +222,11 @@ int main(int argc, char** argv) {
         const Piece start = doc.sculpture().pieces.begin()->second;
         const MassSpringSystem& system = doc.compiled().system;
         std::printf("netsculpt-bench-live: the studio's demo tube, %zu knots, %zu bars, %d x %d; "
-                    "preview backend %s, stiffness x%.3g, tolerance %.0e; built for %s\n",
+                    "preview backend %s, stiffness x%.3g, tolerance %.0e, %d thread(s); "
+                    "built for %s\n",
                     system.knotCount(), system.barCount(), start.rows, start.columns,
                     options.backend.c_str(), previewScale(system, options.previewStiffnessScale),
-                    options.previewTolerance, bench::instructionSet());
+                    options.previewTolerance, options.threads, bench::instructionSet());
         PublicationLog log;
         options.onPublish = [&log](const LiveState& state) { log.record(state); };
         LiveRelaxer live(options);

@@ -93,8 +93,7 @@ App::App(StudioOptions options) : options_(std::move(options)) {
     doc_ = std::make_unique<Document>();
     interaction_ = std::make_unique<Interaction>(*doc_, camera_);
     LiveRelaxOptions live;
-    live.threads = int(std::max(1u, std::thread::hardware_concurrency()) - 1); // a core for the UI
-    live.threads = std::max(live.threads, 1);
+    live.threads = threadsBesideTheFrames();
     live_ = std::make_unique<LiveRelaxer>(live);
 }
 
