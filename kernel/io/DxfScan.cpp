@@ -25,6 +25,23 @@ bool isIntegerCode(int c) {
            (c >= 1060 && c <= 1071);
 }
 
+/// The counts dxflib allocates its arrays by, wherever the entity is (a BLOCKS or OBJECTS
+/// section too): LWPOLYLINE vertices (90), SPLINE knots, control and fit points (72, 73, 74),
+/// LEADER vertices (76). Null when `code` is not one of them for `type`.
+const char* allocatedCount(std::string_view type, int code) {
+    if (type == "LWPOLYLINE" && code == 90)
+        return "vertex count";
+    if (type == "SPLINE" && code == 72)
+        return "knot count";
+    if (type == "SPLINE" && code == 73)
+        return "control point count";
+    if (type == "SPLINE" && code == 74)
+        return "fit point count";
+    if (type == "LEADER" && code == 76)
+        return "vertex count";
+    return nullptr;
+}
+
 const char* codeMeaning(int c) {
     switch (c) {
     case 10:
@@ -87,6 +104,9 @@ class Scanner {
     bool ended_ = false;
     bool inEntity_ = false;
     DxfEntity entity_;
+    std::string object_;                        // type of the current object (entity, table entry)
+    std::size_t objectLine_ = 0;                // the line of its "0" group code
+    std::array<std::size_t, 100> countLines_{}; // line of each allocated count it gave; 0 = none
 
     [[noreturn]] void fail(std::size_t line, const std::string& what) const {
         throw UserError(file_ + ": line " + std::to_string(line) + ": " + what);
@@ -146,6 +166,7 @@ class Scanner {
         if (section_.empty())
             fail(codeLine, "group code " + std::to_string(c) +
                                " outside any SECTION; expected '0 SECTION' or '0 EOF'");
+        checkAllocatedCount(codeLine + 1, c, value);
         if (section_ == "ENTITIES" && inEntity_)
             entityValue(codeLine + 1, c, value);
     }
@@ -166,11 +187,15 @@ class Scanner {
         if (value == "ENDSEC") {
             finishEntity();
             section_.clear();
+            object_.clear();
             return;
         }
         if (value == "SECTION" || value == "EOF")
             fail(line, "'0 " + std::string(value) + "' inside the " + section_ +
                            " section (its ENDSEC is missing)");
+        object_ = std::string(value);
+        objectLine_ = line;
+        countLines_.fill(0);
         if (section_ != "ENTITIES")
             return;
         finishEntity();
@@ -179,6 +204,39 @@ class Scanner {
         entity_.line = line;
         entity_.index = out_.entities.size();
         inEntity_ = true;
+    }
+
+    /// "LWPOLYLINE on layer R (line 5)" in ENTITIES, "LEADER in the BLOCKS section (line 9)"
+    /// elsewhere.
+    std::string describeObject() const {
+        if (section_ == "ENTITIES" && inEntity_)
+            return entity_.describe();
+        return object_ + " in the " + section_ + " section (line " + std::to_string(objectLine_) +
+               ")";
+    }
+
+    /// dxflib allocates an array by each of these counts as it reads it, in any section, and
+    /// frees the old array first when a count comes again: a count of 2e9 asked for 64 GB, and
+    /// when that allocation failed after a first count, dxflib freed its array a second time.
+    /// So every count is checked wherever it is, and may be given once per object.
+    void checkAllocatedCount(std::size_t line, int c, std::string_view value) {
+        const char* what = allocatedCount(object_, c);
+        if (!what)
+            return;
+        const auto number = parseInteger(value);
+        if (!number)
+            fail(line, describeObject() + ": " + what + " (group code " + std::to_string(c) +
+                           ") holds " + quoted(value) + ", which is not an integer");
+        if (*number < 0 || *number > kMaxCount)
+            fail(line, describeObject() + ": " + what + " " + std::to_string(*number) +
+                           " (group code " + std::to_string(c) +
+                           ") is out of range; allowed 0 to " + std::to_string(kMaxCount));
+        std::size_t& first = countLines_[std::size_t(c)];
+        if (first != 0)
+            fail(line, describeObject() + ": gives its " + what + " (group code " +
+                           std::to_string(c) + ") twice, at lines " + std::to_string(first) +
+                           " and " + std::to_string(line) + "; an entity declares it once");
+        first = line;
     }
 
     void entityValue(std::size_t line, int c, std::string_view value) {

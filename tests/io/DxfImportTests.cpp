@@ -270,6 +270,52 @@ TEST_CASE("DXF: counts that disagree with the values, branches, text that is not
         CHECK(distance(p, {-1, 0, -2}) == Approx(1).epsilon(1e-12));
 }
 
+TEST_CASE("DXF: the counts dxflib allocates by are bounded and given once, in every section") {
+    // dxflib allocates an array by each count as it reads it: these files asked for up to 64 GB,
+    // and a repeated LWPOLYLINE count freed dxflib's array twice.
+    const auto dir = outputDir("dxf-counts");
+    ImportOptions metres;
+    metres.units = "m";
+    const auto fails = [&](const std::string& name, const std::string& text,
+                           std::initializer_list<std::string> parts) {
+        INFO(name);
+        writeText(dir / name, text);
+        try {
+            importRailsFile(dir / name, metres);
+            FAIL("no error");
+        } catch (const UserError& e) {
+            const std::string message = e.what();
+            INFO(message);
+            CHECK_THAT(message, Contains(name));
+            for (const auto& part : parts)
+                CHECK_THAT(message, Contains(part));
+        }
+    };
+    const std::string square = "10\n0\n20\n0\n10\n1\n20\n0\n";
+    fails("repeated.dxf",
+          minimalDxf("0\nLWPOLYLINE\n8\nR\n90\n2\n70\n0\n" + square + "90\n2000000000\n"),
+          {"LWPOLYLINE on layer R (line 5)", "vertex count 2000000000 (group code 90)",
+           "allowed 0 to 10000000"});
+    fails("twice.dxf", minimalDxf("0\nLWPOLYLINE\n8\nR\n90\n2\n70\n0\n" + square + "90\n2\n"),
+          {"line 22", "gives its vertex count (group code 90) twice, at lines 10 and 22"});
+    fails("leader.dxf", minimalDxf("0\nLEADER\n8\nR\n76\n2000000000\n"),
+          {"line 10", "LEADER on layer R", "vertex count 2000000000 (group code 76)"});
+    fails("spline.dxf",
+          minimalDxf("0\nSPLINE\n8\nR\n70\n8\n71\n1\n72\n4\n73\n2\n40\n0\n40\n0\n40\n1\n40\n1\n"
+                     "10\n0\n20\n0\n30\n0\n10\n1\n20\n0\n30\n0\n72\n2000000000\n"),
+          {"SPLINE on layer R", "knot count 2000000000 (group code 72)"});
+    fails("block.dxf",
+          "0\nSECTION\n2\nBLOCKS\n0\nBLOCK\n8\n0\n2\nB\n0\nLWPOLYLINE\n8\nR\n90\n-1\n"
+          "0\nENDBLK\n0\nENDSEC\n" +
+              minimalDxf("0\nLINE\n8\nR\n10\n0\n20\n0\n30\n0\n11\n1\n21\n0\n31\n0\n"),
+          {"line 16", "LWPOLYLINE in the BLOCKS section (line 11)", "vertex count -1"});
+    fails("objects.dxf",
+          "0\nSECTION\n2\nOBJECTS\n0\nSPLINE\n73\n1e9\n0\nENDSEC\n" +
+              minimalDxf("0\nLINE\n8\nR\n10\n0\n20\n0\n30\n0\n11\n1\n21\n0\n31\n0\n"),
+          {"line 8", "SPLINE in the OBJECTS section",
+           "control point count (group code 73) holds '1e9'", "not an integer"});
+}
+
 TEST_CASE("DXF: a rounding-sized bulge keeps its segment straight") {
     // CAD programs write bulges like 3e-17 for straight segments; the arc's centre lies
     // chord / (4 bulge) away, so the samples must not be taken from it.
