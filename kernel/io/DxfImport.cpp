@@ -96,10 +96,13 @@ class Collector final : public DL_CreationAdapter {
         if (!e)
             return;
         checkRadius(*e, d.radius);
-        double sweep = std::fmod(d.angle2 - d.angle1, 360.0);
+        // Each angle is reduced on its own: the difference of two finite angles overflows
+        // (1.7e308 and -1.7e308 degrees), and an infinite one left the sweep NaN.
+        const double start = std::fmod(d.angle1, 360.0);
+        double sweep = std::fmod(std::fmod(d.angle2, 360.0) - start, 360.0);
         if (sweep <= 0)
             sweep += 360.0;
-        const double a0 = d.angle1 * kRadiansPerDegree;
+        const double a0 = start * kRadiansPerDegree;
         const Vec3 centre{d.cx, d.cy, d.cz};
         std::vector<Vec3> pts{
             {d.cx + d.radius * std::cos(a0), d.cy + d.radius * std::sin(a0), d.cz}};

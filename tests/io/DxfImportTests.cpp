@@ -316,6 +316,33 @@ TEST_CASE("DXF: the counts dxflib allocates by are bounded and given once, in ev
            "control point count (group code 73) holds '1e9'", "not an integer"});
 }
 
+TEST_CASE("DXF: an ARC's angles are taken modulo 360 degrees, however large") {
+    // Their difference overflowed to infinity, the sweep was NaN and its sample count undefined.
+    const auto dir = outputDir("dxf-arc-angles");
+    ImportOptions metres;
+    metres.units = "m";
+    writeText(dir / "huge.dxf", minimalDxf("0\nARC\n8\nR\n10\n1\n20\n2\n30\n3\n40\n0.5\n"
+                                           "50\n1.7e308\n51\n-1.7e308\n"));
+    const auto rails = importRailsFile(dir / "huge.dxf", metres);
+    REQUIRE(rails.size() == 1);
+    const double start = std::fmod(1.7e308, 360.0);
+    double sweep = std::fmod(-2 * start, 360.0);
+    if (sweep <= 0)
+        sweep += 360.0;
+    CHECK(distance(rails[0].curve.points.front(), {1 + 0.5 * std::cos(start * pi / 180),
+                                                   2 + 0.5 * std::sin(start * pi / 180), 3}) <
+          1e-12);
+    for (const Vec3& p : rails[0].curve.points)
+        CHECK(distance(p, {1, 2, 3}) == Approx(0.5).epsilon(1e-12));
+    CHECK(length(rails[0]) == Approx(sampledArc(0.5, sweep * pi / 180)).epsilon(1e-12));
+    // 370 and 380 degrees are the arc from 10 to 20 degrees.
+    writeText(dir / "turned.dxf", minimalDxf("0\nARC\n8\nR\n10\n0\n20\n0\n30\n0\n40\n1\n"
+                                             "50\n370\n51\n380\n"));
+    const auto turned = importRailsFile(dir / "turned.dxf", metres);
+    REQUIRE(turned.size() == 1);
+    CHECK(length(turned[0]) == Approx(sampledArc(1, 10 * pi / 180)).epsilon(1e-12));
+}
+
 TEST_CASE("DXF: a rounding-sized bulge keeps its segment straight") {
     // CAD programs write bulges like 3e-17 for straight segments; the arc's centre lies
     // chord / (4 bulge) away, so the samples must not be taken from it.
