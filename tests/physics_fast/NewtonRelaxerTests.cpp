@@ -333,6 +333,58 @@ TEST_CASE("fast: a start hinted with the tensions before a bar-length edit conve
     CHECK(sameBits(again.position, hinted.position));
 }
 
+TEST_CASE("fast: a hinted start's single-precision steps reach the double ones' equilibrium, "
+          "and at the rope's stiffness the run goes on in double",
+          "[fast]") {
+    // The drag step above at the preview's stiffness, and the same at the rope's (whose Newton
+    // matrix is a hundred times worse conditioned) to 1e-6.
+    for (const double stiffness : {2e3, 2e5}) {
+        Sculpture s = tube(20, 40, stiffness);
+        const PieceId piece = s.pieces.begin()->first;
+        CompiledSculpture before = compileSculpture(s);
+        FastRelaxer relaxer;
+        REQUIRE(relaxer.relax(before.system, RelaxOptions{}).converged);
+        auto [ignored, after] = applyAtomically(s, [&](Sculpture& m) {
+            setBarLength(m, piece, std::nullopt, 0.1 * 1.005);
+            return 0;
+        });
+        REQUIRE(carryPositions(before, after) > 0);
+        const MassSpringSystem carried = after.system;
+        const std::vector<double> hint = tensionsBefore(before.system, carried);
+        RelaxOptions options;
+        options.startTensions = hint;
+        MassSpringSystem doubled = carried;
+        REQUIRE(relaxer.relax(doubled, options).converged);
+        const std::int64_t doubleSteps = relaxer.statistics().iterations;
+        CHECK(relaxer.statistics().singleFactorizations == 0);
+
+        options.singlePrecisionSteps = true;
+        MassSpringSystem single = carried;
+        const RelaxResult r = relaxer.relax(single, options);
+        const NewtonStatistics stats = relaxer.statistics();
+        INFO("EA " << stiffness << " N: " << r.steps << " iterations (double: " << doubleSteps
+                   << "), " << stats.singleFactorizations << " of " << stats.factorizations
+                   << " factorizations in single precision, residual " << r.residual);
+        REQUIRE(r.converged);
+        CHECK(r.residual < kTolerance);
+        CHECK(stats.singleFactorizations >= 1);
+        CHECK(r.steps <= doubleSteps + 1);
+        CHECK(maxDistance(single.position, doubled.position) < 1e-6);
+        if (stiffness < 1e4) { // single-precision steps throughout: another path, same place
+            CHECK(stats.singleFactorizations == stats.factorizations);
+            CHECK(!sameBits(single.position, doubled.position));
+        } else { // a refined step still too far off: solved again in double, and the rest
+            CHECK(stats.singleFactorizations < stats.factorizations);
+        }
+
+        options.threads = 2; // the same bits on two threads
+        MassSpringSystem again = carried;
+        FastRelaxer other;
+        REQUIRE(other.relax(again, options).converged);
+        CHECK(sameBits(again.position, single.position));
+    }
+}
+
 TEST_CASE("fast: a hint that does not fit the start still converges, and a hint of the wrong "
           "size is refused",
           "[fast]") {

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -146,28 +147,69 @@ TEST_CASE("supernodal Cholesky refuses a matrix that is not positive definite", 
 TEST_CASE("supernodal Cholesky: shared supernodes give the same bits on 1 and 2 threads",
           "[fast]") {
     // Grids whose top separators are wide enough to be shared, of several widths (so that the
-    // column and row ranges fall at different places of the products' register blocks).
+    // column and row ranges fall at different places of the products' register blocks), in
+    // both precisions (their register blocks differ).
+    using Precision = SupernodalCholesky::Precision;
     for (auto [rows, columns] :
          {std::pair{40, 70}, std::pair{45, 45}, std::pair{37, 53}, std::pair{80, 33}}) {
         const Problem p = gridProblem(rows, columns, 13);
         SupernodalCholesky one, two;
         one.analyse(p.nodes, p.pairs);
         two.analyse(p.nodes, p.pairs);
-        INFO(rows << " x " << columns << " nodes");
         REQUIRE(two.sharedSupernodes() > 0);
         ThreadPool pool(2);
-        for (int repeat = 0; repeat < 3; ++repeat) {
-            REQUIRE(one.factorize(p.values, 0.5 * repeat));
-            REQUIRE(two.factorize(p.values, 0.5 * repeat, &pool));
-            Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(p.dense.rows(), -1, 2);
-            std::vector<double> x(b.data(), b.data() + b.size()), y = x;
-            one.solve(x);
-            two.solve(y, &pool);
-            CHECK(std::memcmp(x.data(), y.data(), x.size() * sizeof(double)) == 0);
-            if (repeat == 0) {
-                const Eigen::Map<Eigen::VectorXd> solution(x.data(), b.size());
-                CHECK((p.dense * solution - b).cwiseAbs().maxCoeff() < 1e-10);
+        for (const Precision precision : {Precision::Double, Precision::Single})
+            for (int repeat = 0; repeat < 3; ++repeat) {
+                INFO(rows << " x " << columns << " nodes, single "
+                          << (precision == Precision::Single) << ", shift " << 0.5 * repeat);
+                REQUIRE(one.factorize(p.values, 0.5 * repeat, nullptr, precision));
+                REQUIRE(two.factorize(p.values, 0.5 * repeat, &pool, precision));
+                Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(p.dense.rows(), -1, 2);
+                std::vector<double> x(b.data(), b.data() + b.size()), y = x;
+                one.solve(x);
+                two.solve(y, &pool);
+                CHECK(std::memcmp(x.data(), y.data(), x.size() * sizeof(double)) == 0);
+                if (repeat == 0 && precision == Precision::Double) {
+                    const Eigen::Map<Eigen::VectorXd> solution(x.data(), b.size());
+                    CHECK((p.dense * solution - b).cwiseAbs().maxCoeff() < 1e-10);
+                }
             }
-        }
     }
+}
+
+TEST_CASE("supernodal Cholesky in single precision: a solution off by about the condition number "
+          "times float's rounding, and doubles again after it",
+          "[fast]") {
+    using Precision = SupernodalCholesky::Precision;
+    const Problem p = gridProblem(20, 25, 17);
+    SupernodalCholesky cholesky;
+    cholesky.analyse(p.nodes, p.pairs);
+    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(p.dense.rows(), -1, 2);
+    const Eigen::VectorXd exact = p.dense.llt().solve(b);
+    const Eigen::VectorXd eigenvalues =
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(p.dense, Eigen::EigenvaluesOnly)
+            .eigenvalues();
+    const double condition = eigenvalues.maxCoeff() / eigenvalues.minCoeff();
+    auto relativeError = [&](Precision precision) {
+        REQUIRE(cholesky.factorize(p.values, 0.0, nullptr, precision));
+        std::vector<double> x(b.data(), b.data() + b.size());
+        cholesky.solve(x);
+        const Eigen::Map<Eigen::VectorXd> solution(x.data(), b.size());
+        return (solution - exact).norm() / exact.norm();
+    };
+    const double single = relativeError(Precision::Single);
+    const double twice = relativeError(Precision::Double);
+    const double epsilon = std::numeric_limits<float>::epsilon();
+    INFO("condition " << condition << ", single " << single << ", double " << twice);
+    CHECK(single < condition * epsilon);
+    CHECK(single > 1e-3 * epsilon); // the arithmetic was single: doubles are 1e9 times finer
+    CHECK(twice < 1e-13);
+
+    // Not positive definite in single precision either.
+    Problem bad = gridProblem(10, 10, 3);
+    SupernodalCholesky small;
+    small.analyse(bad.nodes, bad.pairs);
+    bad.values[9 * 50 + 4] = -1;
+    CHECK_FALSE(small.factorize(bad.values, 0.0, nullptr, Precision::Single));
+    CHECK(small.factorize(bad.values, 1e3, nullptr, Precision::Single));
 }

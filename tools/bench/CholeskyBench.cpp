@@ -88,22 +88,27 @@ void choleskyTimes(bool quick) {
             rhs[i] = std::sin(0.37 * static_cast<double>(i));
         std::printf("%zu knots: factor %.1f MB, %.3g flops per factorization\n", tube.knotCount(),
                     static_cast<double>(cholesky.factorEntries()) * 8e-6, cholesky.factorFlops());
-        for (int threads : {1, 2}) {
-            ThreadPool pool(threads);
-            ThreadPool* use = threads > 1 ? &pool : nullptr;
-            const double factorize = bestOf(quick ? 3 : 10, [&] {
-                if (!cholesky.factorize(m.values, 0.0, use))
-                    throw std::runtime_error("cholesky bench: the matrix is not positive definite");
-            });
-            std::vector<double> b;
-            const double solve = bestOf(30, [&] {
-                b = rhs;
-                cholesky.solve(b, use);
-            });
-            std::printf("  %d thread%s: factorization %.2f ms (%.1f GFlop/s), solve %.2f ms\n",
-                        threads, threads > 1 ? "s" : "", factorize * 1e3,
-                        cholesky.factorFlops() / factorize * 1e-9, solve * 1e3);
-        }
+        using Precision = SupernodalCholesky::Precision;
+        for (const Precision precision : {Precision::Double, Precision::Single})
+            for (int threads : {1, 2}) {
+                ThreadPool pool(threads);
+                ThreadPool* use = threads > 1 ? &pool : nullptr;
+                const double factorize = bestOf(quick ? 3 : 10, [&] {
+                    if (!cholesky.factorize(m.values, 0.0, use, precision))
+                        throw std::runtime_error(
+                            "cholesky bench: the matrix is not positive definite");
+                });
+                std::vector<double> b;
+                const double solve = bestOf(30, [&] {
+                    b = rhs;
+                    cholesky.solve(b, use);
+                });
+                std::printf("  %s, %d thread%s: factorization %.2f ms (%.1f GFlop/s), solve "
+                            "%.2f ms\n",
+                            precision == Precision::Double ? "double" : "single", threads,
+                            threads > 1 ? "s" : "", factorize * 1e3,
+                            cholesky.factorFlops() / factorize * 1e-9, solve * 1e3);
+            }
     }
 }
 

@@ -30,6 +30,7 @@ void addPart(NewtonStatistics& whole, const NewtonStatistics& part) {
     whole.iterations += part.iterations;
     whole.factorizations += part.factorizations;
     whole.failedFactorizations += part.failedFactorizations;
+    whole.singleFactorizations += part.singleFactorizations;
     whole.focusRegions += part.focusRegions;
     whole.softScale = std::min(whole.softScale, part.softScale);
     whole.reusedAnalysis = whole.reusedAnalysis && part.reusedAnalysis;

@@ -33,7 +33,8 @@ struct NewtonAnalysis {
     // law into the field (ForceField::setLaw), its start into the vectors.
     ForceField field;
     std::vector<Vec3> x, trial, force, step, bend, bendThird, bestX;
-    std::vector<double> tension, kCompression, rhs, barTerm, weightOf, dampingUnit;
+    std::vector<double> tension, kCompression, rhs, linearResidual, barTerm, weightOf,
+        dampingUnit;
     HugePageArray barBlock; ///< written whole by every assembly
     HugePageArray values;   ///< likewise
 

@@ -113,6 +113,8 @@ struct NewtonStatistics {
     std::int64_t iterations = 0;     ///< all Newton iterations (= RelaxResult::steps)
     std::int64_t factorizations = 0; ///< numeric factorizations, failed ones included
     std::int64_t failedFactorizations = 0; ///< not positive definite (then the shift grows)
+    /// of them, in single precision (RelaxOptions::singlePrecisionSteps)
+    std::int64_t singleFactorizations = 0;
     double softScale = 1;            ///< stiffness scale of the first soft stage (1 = none)
     /// the ordering and symbolic analysis came from a previous call
     bool reusedAnalysis = false;

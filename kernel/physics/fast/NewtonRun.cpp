@@ -18,6 +18,7 @@ NewtonRun::NewtonRun(MassSpringSystem& system, const RelaxOptions& options,
       tension_(analysis.tension),
       kCompression_(analysis.kCompression),
       barBlock_(analysis.barBlock), values_(analysis.values), rhs_(analysis.rhs),
+      linearResidual_(analysis.linearResidual),
       barTerm_(analysis.barTerm), weightOf_(analysis.weightOf),
       dampingUnit_(analysis.dampingUnit), bestX_(analysis.bestX) {
     field_.setLoad(options.wind, 1.0);
@@ -160,9 +161,13 @@ void NewtonRun::assemble(bool mixed, bool exact) {
 
 bool NewtonRun::factorize() {
     const auto t0 = Clock::now();
-    const bool ok = analysis_.cholesky.factorize(values_, shift_ * meanDiagonal_, pool_.get());
+    const bool ok = analysis_.cholesky.factorize(
+        values_, shift_ * meanDiagonal_, pool_.get(),
+        single_ ? SupernodalCholesky::Precision::Single : SupernodalCholesky::Precision::Double);
     stats_.factorSeconds += secondsSince(t0);
     ++stats_.factorizations;
+    if (single_)
+        ++stats_.singleFactorizations;
     if (!ok)
         ++stats_.failedFactorizations;
     return ok;
@@ -187,6 +192,60 @@ void NewtonRun::solveInto(std::vector<Vec3>& out) {
     for (std::size_t f = 0; f < analysis_.freeKnots.size(); ++f)
         out[analysis_.freeKnots[f]] = Vec3{rhs_[3 * f], rhs_[3 * f + 1], rhs_[3 * f + 2]};
     stats_.solveSeconds += secondsSince(t0);
+}
+
+/// out = (H + mu I) p at the free knots (3 per free knot), p = step_ and H as assembled in
+/// values_ (the diagonal blocks, then the pairs' blocks).
+void NewtonRun::multiplyStep(std::vector<double>& out) const {
+    const std::size_t freeCount = analysis_.freeKnots.size();
+    const double mu = shift_ * meanDiagonal_;
+    for (std::size_t f = 0; f < freeCount; ++f) {
+        const double* h = &values_[9 * f];
+        const Vec3& p = step_[analysis_.freeKnots[f]];
+        for (std::size_t i = 0; i < 3; ++i)
+            out[3 * f + i] = h[3 * i] * p.x + h[3 * i + 1] * p.y + h[3 * i + 2] * p.z +
+                             mu * (i == 0 ? p.x : i == 1 ? p.y : p.z);
+    }
+    const std::size_t pairBase = 9 * freeCount;
+    for (std::size_t k = 0; k < analysis_.pairs.size(); ++k) {
+        const double* h = &values_[pairBase + 9 * k];
+        const auto [a, b] = analysis_.pairs[k];
+        const Vec3& pa = step_[analysis_.freeKnots[a]];
+        const Vec3& pb = step_[analysis_.freeKnots[b]];
+        for (std::size_t i = 0; i < 3; ++i) {
+            out[3 * a + i] += h[3 * i] * pb.x + h[3 * i + 1] * pb.y + h[3 * i + 2] * pb.z;
+            out[3 * b + i] += h[i] * pa.x + h[3 + i] * pa.y + h[6 + i] * pa.z;
+        }
+    }
+}
+
+/// A step solved with a single-precision factor, refined in double: r = F - (H + mu I) p, then
+/// p += (H + mu I)^-1 r with the same factor, at most kSingleRefinements times, until every free
+/// knot's r is within kSingleAccuracy times the tolerance of its weight (the step then moves the
+/// residual as a double one would, to that much). False when it is not.
+bool NewtonRun::refineSingleStep(double tolerance) {
+    const std::size_t freeCount = analysis_.freeKnots.size();
+    std::vector<double>& r = linearResidual_;
+    r.resize(3 * freeCount);
+    for (int k = 0;; ++k) {
+        multiplyStep(r);
+        bool within = true;
+        for (std::size_t f = 0; f < freeCount; ++f) {
+            const std::uint32_t j = analysis_.freeKnots[f];
+            const Vec3 left = force_[j] - Vec3{r[3 * f], r[3 * f + 1], r[3 * f + 2]};
+            within = within && left.norm() <= kSingleAccuracy * tolerance * weightOf_[j];
+            rhs_[3 * f] = left.x;
+            rhs_[3 * f + 1] = left.y;
+            rhs_[3 * f + 2] = left.z;
+        }
+        if (within)
+            return true;
+        if (k == kSingleRefinements)
+            return false;
+        solveInto(bend_); // the correction, in a vector free until the step is bent
+        for (std::uint32_t j : analysis_.freeKnots)
+            step_[j] += bend_[j];
+    }
 }
 
 /// bend_ = the correction c that undoes, to second order, the stretch a full step p causes by
@@ -369,19 +428,31 @@ void NewtonRun::hintedStart(double tolerance) {
     residual_ = evaluate(x_);
     double best = residual_;
     shift_ = kFinalMinShift;
+    single_ = options_.singlePrecisionSteps;
     const std::int64_t first = steps_;
     while (steps_ - first < kHintIterations && !(residual_ < tolerance) && !stopRequested()) {
         report(false);
         assemble(true, false);
-        bool factored = factorize();
-        while (!factored && shift_ < kMaxShift) {
-            shift_ = std::max(shift_ * 10, kFailShift);
-            factored = factorize();
-        }
+        const auto factorizeShifted = [&] {
+            bool factored = factorize();
+            while (!factored && shift_ < kMaxShift) {
+                shift_ = std::max(shift_ * 10, kFailShift);
+                factored = factorize();
+            }
+            return factored;
+        };
+        bool factored = factorizeShifted();
         ++steps_;
+        if (factored)
+            solve();
+        if (factored && single_ && !refineSingleStep(tolerance)) {
+            single_ = false; // rounding holds the steps back: the rest of the run in double
+            factored = factorizeShifted();
+            if (factored)
+                solve();
+        }
         if (!factored)
             break;
-        solve();
         // The first iteration is the edit's tangent predictor; the ones after it correct the bars
         // it turned, with bent steps (NewtonRun.h: a row step's three iterations become two).
         bent_ = steps_ - first > 1;
@@ -401,6 +472,7 @@ void NewtonRun::hintedStart(double tolerance) {
             shift_ = std::max(shift_ * 0.1, kFinalMinShift);
         best = std::min(best, residual_);
     }
+    single_ = false;
     stats_.hintIterations = steps_ - first;
     // Back to the material's law.
     compressionBlend_ = -1;

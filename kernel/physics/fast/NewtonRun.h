@@ -82,6 +82,16 @@ constexpr int kHintIterations = 6;
 // weights after the hinted iterations, with the new rows thrown about, from where the run did not
 // converge in 60 s; from the start as the edit left it, 4.3 s), and the run goes on from the start.
 constexpr double kHintKeepResidual = 1e4;
+// With RelaxOptions::singlePrecisionSteps the hinted iterations factorize in single precision.
+// A single-precision step is off by about the matrix's condition number times 6e-8,
+// relatively, which a stiff or large net's steps would notice near their tolerance, so each is
+// refined in double (NewtonRun::refineSingleStep) until the forces it leaves out of balance,
+// to first order, are within kSingleAccuracy of the tolerance at every knot, at most
+// kSingleRefinements times; a step still off then is solved again in double, and so is the
+// rest of the run. The studio's drag step at 20,000 knots needs no refinement and a row step's
+// second iteration one (netsculpt-bench-live); the rope's stiffness to 1e-6 goes to double.
+constexpr double kSingleAccuracy = 0.5;
+constexpr int kSingleRefinements = 2;
 // Line search: Armijo's sufficient decrease, at most kMaxBacktracks halvings (safeguarded
 // quadratic interpolation).
 constexpr double kArmijo = 1e-4;
@@ -212,6 +222,8 @@ class NewtonRun {
     bool factorize();
     void solve();
     void solveInto(std::vector<Vec3>& out);
+    void multiplyStep(std::vector<double>& out) const;
+    bool refineSingleStep(double tolerance);
     void bendStep();
     void bendThirdOrder();
     void solveBarTerms(std::vector<Vec3>& out);
@@ -265,11 +277,13 @@ class NewtonRun {
     HugePageArray& barBlock_;           ///< 9 per bar: its Hessian block
     HugePageArray& values_;             ///< the Newton matrix's blocks (SupernodalCholesky layout)
     std::vector<double>& rhs_;          ///< 3 per free knot
+    std::vector<double>& linearResidual_; ///< 3 per free knot (refineSingleStep)
     std::vector<double>& barTerm_;      ///< per bar scratch for sums done in a fixed order
     std::vector<double>& weightOf_;     ///< m_j |g| per knot
     double scale_ = 1;
     bool bent_ = false; ///< the current step's path is x + a p + a^2 / 2 c
     bool thirdOrder_ = false; ///< ... + a^3 / 6 e
+    bool single_ = false; ///< factorize in single precision (hintedStart, kSingleProgress)
     double compressionBlend_ = 0;
     double residual_ = 0;            ///< at x_, current scale
     double shift_ = kMinShift;       ///< lambda of the Levenberg shift

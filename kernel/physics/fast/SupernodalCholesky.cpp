@@ -18,15 +18,16 @@
 #include <string>
 #include <thread>
 #include <tuple>
+#include <type_traits>
 
 namespace netsculpt {
 
 namespace {
 
-using MatrixMap = Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic>>;
-using ConstMatrixMap = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic>>;
-using VectorMap = Eigen::Map<Eigen::VectorXd>;
-using StridedRef = Eigen::Ref<Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
+template <class T> using Dense = Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>;
+template <class T> using MatrixMap = Eigen::Map<Dense<T>>;
+template <class T> using ConstMatrixMap = Eigen::Map<const Dense<T>>;
+template <class T> using StridedRef = Eigen::Ref<Dense<T>, 0, Eigen::OuterStride<>>;
 
 // Marks a fill entry whose input block lands transposed in the factor.
 constexpr std::uint32_t kTransposed = std::uint32_t(1) << 31;
@@ -40,17 +41,21 @@ constexpr double kRelaxZeros[3] = {0.8, 0.1, 0.05};
 // A shared supernode's rows below the diagonal block are solved in ranges of at least this many
 // (see SupernodalSchedule.cpp for which supernodes are shared).
 constexpr std::int64_t kSharedRows = 96;
-// Eigen's register blocks for double products: a GEMM computes each output column inside a group
+// Eigen's register blocks for products of T: a GEMM computes each output column inside a group
 // of kRegisterColumns (the last ones of a product one at a time) and each output row inside a
-// group of kRegisterRows (the last ones in smaller groups). Splitting a product or a triangular
+// group of kRegisterRows<T> (the last ones in smaller groups). Splitting a product or a triangular
 // solve at multiples of these (from its first column or row) leaves every entry's operations
 // as they are in the whole.
 constexpr std::int64_t kRegisterColumns = Eigen::internal::gebp_traits<double, double>::nr;
-constexpr std::int64_t kRegisterRows = Eigen::internal::gebp_traits<double, double>::mr;
+static_assert(Eigen::internal::gebp_traits<float, float>::nr == kRegisterColumns,
+              "the shared supernodes' column ranges serve both precisions");
+template <class T>
+constexpr std::int64_t kRegisterRows = Eigen::internal::gebp_traits<T, T>::mr;
 // Eigen computes a product coefficient by coefficient (other operations) when its rows, columns
 // and depth sum to less than this (EIGEN_GEMM_TO_COEFFBASED_THRESHOLD).
 constexpr std::int64_t kCoefficientProduct = 20;
-static_assert(kSharedRows % kRegisterRows == 0, "row ranges must start at register blocks");
+static_assert(kSharedRows % kRegisterRows<double> == 0 && kSharedRows % kRegisterRows<float> == 0,
+              "row ranges must start at register blocks");
 
 /// CHOLMOD's workspace for the duration of an analysis.
 class CholmodCommon {
@@ -386,20 +391,27 @@ void SupernodalCholesky::placeInput(std::span<const std::array<std::uint32_t, 2>
 /// scalar code before it; the two differ in their last bits where the compiler does not
 /// contract the scalar code's multiply-adds (unoptimized builds), so an address that moved
 /// with the heap's state made a factor's bits depend on what ran before.
-double* SupernodalCholesky::alignedProduct(Worker& worker, std::int64_t n) {
-    constexpr std::size_t kAlign = 64 / sizeof(double);
-    if (worker.product.size() < static_cast<std::size_t>(n) + kAlign)
-        worker.product.resize(static_cast<std::size_t>(n) + kAlign);
-    const auto address = reinterpret_cast<std::uintptr_t>(worker.product.data());
-    return worker.product.data() + (kAlign - address / sizeof(double) % kAlign) % kAlign;
+template <class T> T* SupernodalCholesky::alignedProduct(Worker& worker, std::int64_t n) {
+    constexpr std::size_t kAlign = 64 / sizeof(T);
+    std::vector<T>& product = [&]() -> std::vector<T>& {
+        if constexpr (std::is_same_v<T, double>)
+            return worker.product;
+        else
+            return worker.productSingle;
+    }();
+    if (product.size() < static_cast<std::size_t>(n) + kAlign)
+        product.resize(static_cast<std::size_t>(n) + kAlign);
+    const auto address = reinterpret_cast<std::uintptr_t>(product.data());
+    return product.data() + (kAlign - address / sizeof(T) % kAlign) % kAlign;
 }
 
+template <class T>
 void SupernodalCholesky::applyUpdates(std::size_t s, std::int64_t columnBegin,
                                       std::int64_t columnEnd, const std::int64_t* position,
                                       Worker& worker) {
     const std::int64_t cols = superStart_[s + 1] - superStart_[s];
     const std::int64_t rowCount = rowStart_[s + 1] - rowStart_[s];
-    double* block = values_.data() + valueStart_[s];
+    T* block = factorValues<T>() + valueStart_[s];
     // Left-looking: subtract L_d[rows from begin on] * L_d[begin, end)^T for every descendant d
     // with rows among this supernode's columns, in increasing d (the fixed order of the sum).
     // A range of the columns takes from each update the product's columns that land in it.
@@ -408,7 +420,7 @@ void SupernodalCholesky::applyUpdates(std::size_t s, std::int64_t columnBegin,
         const std::size_t d = update.source;
         const std::int64_t sourceRows = rowStart_[d + 1] - rowStart_[d];
         const std::int64_t sourceCols = superStart_[d + 1] - superStart_[d];
-        ConstMatrixMap source(values_.data() + valueStart_[d], sourceRows, sourceCols);
+        ConstMatrixMap<T> source(factorValues<T>() + valueStart_[d], sourceRows, sourceCols);
         const std::int64_t m = sourceRows - update.begin, k = update.end - update.begin;
         const std::int64_t* sourceRowIndex = rows_.data() + rowStart_[d] + update.begin;
         std::int64_t j0 = 0, j1 = k; // the product's columns that land in the range
@@ -437,7 +449,7 @@ void SupernodalCholesky::applyUpdates(std::size_t s, std::int64_t columnBegin,
                 b = k;
             }
         }
-        MatrixMap product(alignedProduct(worker, m * (b - a)), m, b - a);
+        MatrixMap<T> product(alignedProduct<T>(worker, m * (b - a)), m, b - a);
         product.noalias() = source.middleRows(update.begin, m) *
                             source.middleRows(update.begin + a, b - a).transpose();
         // Each entry of the product is subtracted from its place in the block once, in the same
@@ -451,10 +463,10 @@ void SupernodalCholesky::applyUpdates(std::size_t s, std::int64_t columnBegin,
             place[ii] = position[static_cast<std::size_t>(sourceRowIndex[ii])];
         const bool consecutive = place[m - 1] - place[0] == m - 1;
         for (std::int64_t jj = j0; jj < j1; ++jj) {
-            double* column = block + (sourceRowIndex[jj] - superStart_[s]) * rowCount;
-            const double* p = product.data() + (jj - a) * m;
+            T* column = block + (sourceRowIndex[jj] - superStart_[s]) * rowCount;
+            const T* p = product.data() + (jj - a) * m;
             if (consecutive) {
-                double* to = column + place[0];
+                T* to = column + place[0];
                 for (std::int64_t ii = jj; ii < m; ++ii)
                     to[ii] -= p[ii];
             } else {
@@ -465,12 +477,13 @@ void SupernodalCholesky::applyUpdates(std::size_t s, std::int64_t columnBegin,
     }
 }
 
+template <class T>
 bool SupernodalCholesky::factorSupernode(std::size_t s, std::span<const double> values,
                                          double shift, Worker& worker, Team* team) {
     const std::int64_t cols = superStart_[s + 1] - superStart_[s];
     const std::int64_t rowCount = rowStart_[s + 1] - rowStart_[s];
-    double* block = values_.data() + valueStart_[s];
-    MatrixMap l(block, rowCount, cols);
+    T* block = factorValues<T>() + valueStart_[s];
+    MatrixMap<T> l(block, rowCount, cols);
     l.setZero();
     // The input blocks: a diagonal one's lower triangle, a pair's nine entries, each entry (a, b)
     // at row a, column b of the block (b, a when transposed).
@@ -478,23 +491,24 @@ bool SupernodalCholesky::factorSupernode(std::size_t s, std::span<const double> 
         const std::uint32_t entry = fillBlock_[static_cast<std::size_t>(k)];
         const std::size_t source = entry & ~kTransposed;
         const double* v = values.data() + 9 * source;
-        double* to = block + fillBase_[static_cast<std::size_t>(k)];
+        T* to = block + fillBase_[static_cast<std::size_t>(k)];
         if (source < nodes_) {
             for (int b = 0; b < 3; ++b)
                 for (int a = b; a < 3; ++a)
-                    to[b * rowCount + a] = v[3 * a + b];
+                    to[b * rowCount + a] = static_cast<T>(v[3 * a + b]);
         } else if (entry & kTransposed) {
             for (int a = 0; a < 3; ++a)
                 for (int b = 0; b < 3; ++b)
-                    to[a * rowCount + b] = v[3 * a + b];
+                    to[a * rowCount + b] = static_cast<T>(v[3 * a + b]);
         } else {
             for (int a = 0; a < 3; ++a)
                 for (int b = 0; b < 3; ++b)
-                    to[b * rowCount + a] = v[3 * a + b];
+                    to[b * rowCount + a] = static_cast<T>(v[3 * a + b]);
         }
     }
     for (std::int64_t k = 0; k < cols; ++k)
-        block[diagonalOffset_[static_cast<std::size_t>(superStart_[s] + k)]] += shift;
+        block[diagonalOffset_[static_cast<std::size_t>(superStart_[s] + k)]] +=
+            static_cast<T>(shift);
 
     const std::int64_t* rows = rows_.data() + rowStart_[s];
     for (std::int64_t i = 0; i < rowCount; ++i)
@@ -504,17 +518,17 @@ bool SupernodalCholesky::factorSupernode(std::size_t s, std::span<const double> 
     const std::size_t boundaries = splitStart_[s + 1] - splitStart_[s];
     const bool shared = team && boundaries > 1;
     if (!shared) {
-        applyUpdates(s, 0, cols, worker.position.data(), worker);
+        applyUpdates<T>(s, 0, cols, worker.position.data(), worker);
     } else {
         const std::int64_t* position = worker.position.data();
         const Team::Body job = [&](std::size_t r, Worker& w) {
-            applyUpdates(s, split[r], split[r + 1], position, w);
+            applyUpdates<T>(s, split[r], split[r + 1], position, w);
         };
         team->run(boundaries - 1, job, worker);
     }
 
-    StridedRef diagonal = l.topRows(cols);
-    Eigen::LLT<StridedRef> llt(diagonal); // in place: the lower triangle becomes L_ss
+    StridedRef<T> diagonal = l.topRows(cols);
+    Eigen::LLT<StridedRef<T>> llt(diagonal); // in place: the lower triangle becomes L_ss
     bool ok = llt.info() == Eigen::Success;
     for (std::int64_t k = 0; ok && k < cols; ++k)
         ok = std::isfinite(diagonal(k, k)) && diagonal(k, k) > 0;
@@ -526,12 +540,14 @@ bool SupernodalCholesky::factorSupernode(std::size_t s, std::span<const double> 
     // L21 = A21 L11^-T, row by row; a shared supernode's rows in ranges of whole register blocks.
     const std::int64_t rangeRows =
         shared ? std::max(kSharedRows,
-                          (below + 3 * kRegisterRows - 1) / (3 * kRegisterRows) * kRegisterRows)
+                          (below + 3 * kRegisterRows<T> - 1) / (3 * kRegisterRows<T>) *
+                              kRegisterRows<T>)
                : below;
     const auto solveRows = [&](std::size_t r, Worker&) {
         const std::int64_t first = static_cast<std::int64_t>(r) * rangeRows;
         const std::int64_t count = std::min(rangeRows, below - first);
-        diagonal.transpose().triangularView<Eigen::Upper>().solveInPlace<Eigen::OnTheRight>(
+        diagonal.transpose().template triangularView<Eigen::Upper>().template solveInPlace<
+            Eigen::OnTheRight>(
             l.middleRows(cols + first, count));
     };
     const auto rowRanges = static_cast<std::size_t>((below + rangeRows - 1) / rangeRows);
@@ -542,6 +558,7 @@ bool SupernodalCholesky::factorSupernode(std::size_t s, std::span<const double> 
     return true;
 }
 
+template <class T>
 void SupernodalCholesky::runSchedule(std::span<const double> values, double shift,
                                      ThreadPool* pool) {
     const std::size_t threads = pool ? static_cast<std::size_t>(pool->size()) : 1;
@@ -553,7 +570,7 @@ void SupernodalCholesky::runSchedule(std::span<const double> values, double shif
     const std::size_t supers = superStart_.size() - 1;
     if (threads == 1 || taskStart_.size() <= 2) {
         for (std::size_t s = 0; s < supers && !failed_; ++s)
-            failed_ = !factorSupernode(s, values, shift, workers_[0]);
+            failed_ = !factorSupernode<T>(s, values, shift, workers_[0]);
         return;
     }
 
@@ -593,7 +610,7 @@ void SupernodalCholesky::runSchedule(std::span<const double> values, double shif
                 continue;
             }
             for (std::uint32_t k = taskStart_[task]; k < taskStart_[task + 1]; ++k)
-                if (!factorSupernode(taskSupers_[k], values, shift, worker, &team)) {
+                if (!factorSupernode<T>(taskSupers_[k], values, shift, worker, &team)) {
                     failed.store(true, std::memory_order_relaxed);
                     break;
                 }
@@ -612,10 +629,15 @@ void SupernodalCholesky::runSchedule(std::span<const double> values, double shif
         failed_ = true;
 }
 
-bool SupernodalCholesky::factorize(std::span<const double> values, double shift, ThreadPool* pool) {
+bool SupernodalCholesky::factorize(std::span<const double> values, double shift, ThreadPool* pool,
+                                   Precision precision) {
     assert(analysed_ && values.size() == 9 * (nodes_ + pairs_) && shift >= 0);
     failed_ = false;
-    runSchedule(values, shift, pool);
+    precision_ = precision;
+    if (precision == Precision::Single)
+        runSchedule<float>(values, shift, pool);
+    else
+        runSchedule<double>(values, shift, pool);
     return !failed_;
 }
 

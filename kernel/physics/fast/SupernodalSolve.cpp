@@ -11,38 +11,59 @@
 #include <cassert>
 #include <mutex>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 namespace netsculpt {
 
 namespace {
 
-using ConstMatrixMap = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic>>;
+template <class T>
+using ConstMatrixMap = Eigen::Map<const Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>>;
+template <class T> using Vector = Eigen::Matrix<T, Eigen::Dynamic, 1>;
 
 } // namespace
 
 void SupernodalCholesky::solve(std::span<double> b, ThreadPool* pool) const {
     assert(analysed_ && !failed_ && b.size() == dimension_);
-    if (pool && pool->size() > 1 && taskStart_.size() > 2)
-        return solveParallel(b, *pool);
-    const std::size_t supers = superStart_.size() - 1;
-    Eigen::VectorXd y(static_cast<Eigen::Index>(dimension_));
+    if (precision_ == Precision::Single)
+        solveIn<float>(b, pool);
+    else
+        solveIn<double>(b, pool);
+}
+
+// The solve in the factor's precision T: the right-hand side permuted (and rounded to T), the
+// two substitutions, the solution back in b.
+template <class T> void SupernodalCholesky::solveIn(std::span<double> b, ThreadPool* pool) const {
+    Vector<T> y(static_cast<Eigen::Index>(dimension_));
     for (std::size_t k = 0; k < dimension_; ++k)
-        y[static_cast<Eigen::Index>(k)] = b[static_cast<std::size_t>(perm_[k])];
-    Eigen::VectorXd scratch(static_cast<Eigen::Index>(maxRows_));
-    // L y' = y
-    for (std::size_t s = 0; s < supers; ++s) {
-        const std::int64_t below = solveForward(s, y.data(), scratch.data());
-        const std::int64_t* rows =
-            rows_.data() + rowStart_[s] + (superStart_[s + 1] - superStart_[s]);
-        for (std::int64_t i = 0; i < below; ++i)
-            y[rows[i]] -= scratch[i];
+        y[static_cast<Eigen::Index>(k)] = static_cast<T>(b[static_cast<std::size_t>(perm_[k])]);
+    if (pool && pool->size() > 1 && taskStart_.size() > 2) {
+        solveParallel<T>(y.data(), *pool);
+    } else {
+        const std::size_t supers = superStart_.size() - 1;
+        Vector<T> scratch(static_cast<Eigen::Index>(maxRows_));
+        // L y' = y
+        for (std::size_t s = 0; s < supers; ++s) {
+            const std::int64_t below = solveForward<T>(s, y.data(), scratch.data());
+            const std::int64_t* rows =
+                rows_.data() + rowStart_[s] + (superStart_[s + 1] - superStart_[s]);
+            for (std::int64_t i = 0; i < below; ++i)
+                y[rows[i]] -= scratch[i];
+        }
+        // L^T x = y'
+        for (std::size_t s = supers; s-- > 0;)
+            solveBackward<T>(s, y.data(), scratch.data());
     }
-    // L^T x = y'
-    for (std::size_t s = supers; s-- > 0;)
-        solveBackward(s, y.data(), scratch.data());
     for (std::size_t k = 0; k < dimension_; ++k)
         b[static_cast<std::size_t>(perm_[k])] = y[static_cast<Eigen::Index>(k)];
+}
+
+template <class T> std::vector<T>& SupernodalCholesky::belowProducts() const {
+    if constexpr (std::is_same_v<T, double>)
+        return belowProducts_;
+    else
+        return belowProductsSingle_;
 }
 
 // Supernode s's part of L y' = y, its descendants' products already taken from its entries of y:
@@ -51,15 +72,16 @@ void SupernodalCholesky::solve(std::span<double> b, ThreadPool* pool) const {
 // column, each column of the block read once and contiguously: most supernodes are one to eight
 // knots, and the per-call overheads of a library's triangular solve and matrix-vector product
 // made the solve 1.3-1.4 times as slow.
-std::int64_t SupernodalCholesky::solveForward(std::size_t s, double* yData, double* scratch) const {
+template <class T>
+std::int64_t SupernodalCholesky::solveForward(std::size_t s, T* yData, T* scratch) const {
     const std::int64_t cols = superStart_[s + 1] - superStart_[s];
     const std::int64_t rowCount = rowStart_[s + 1] - rowStart_[s];
     const std::int64_t below = rowCount - cols;
-    ConstMatrixMap l(values_.data() + valueStart_[s], rowCount, cols);
-    Eigen::Map<Eigen::VectorXd> part(yData + superStart_[s], cols), product(scratch, below);
+    ConstMatrixMap<T> l(factorValues<T>() + valueStart_[s], rowCount, cols);
+    Eigen::Map<Vector<T>> part(yData + superStart_[s], cols), product(scratch, below);
     product.setZero();
     for (std::int64_t j = 0; j < cols; ++j) {
-        const double value = part[j] / l(j, j);
+        const T value = part[j] / l(j, j);
         part[j] = value;
         part.tail(cols - j - 1) -= l.col(j).segment(j + 1, cols - j - 1) * value;
         product += l.col(j).tail(below) * value;
@@ -69,17 +91,18 @@ std::int64_t SupernodalCholesky::solveForward(std::size_t s, double* yData, doub
 
 // Supernode s's part of L^T x = y': its entries of y minus its rows below times their (final)
 // entries, its diagonal block's transposed triangle solved; column by column, the last first.
-void SupernodalCholesky::solveBackward(std::size_t s, double* yData, double* scratch) const {
+template <class T>
+void SupernodalCholesky::solveBackward(std::size_t s, T* yData, T* scratch) const {
     const std::int64_t cols = superStart_[s + 1] - superStart_[s];
     const std::int64_t rowCount = rowStart_[s + 1] - rowStart_[s];
     const std::int64_t below = rowCount - cols;
-    ConstMatrixMap l(values_.data() + valueStart_[s], rowCount, cols);
-    Eigen::Map<Eigen::VectorXd> part(yData + superStart_[s], cols), t(scratch, below);
+    ConstMatrixMap<T> l(factorValues<T>() + valueStart_[s], rowCount, cols);
+    Eigen::Map<Vector<T>> part(yData + superStart_[s], cols), t(scratch, below);
     const std::int64_t* rows = rows_.data() + rowStart_[s] + cols;
     for (std::int64_t i = 0; i < below; ++i)
         t[i] = yData[rows[i]];
     for (std::int64_t j = cols; j-- > 0;) {
-        const double known = l.col(j).segment(j + 1, cols - j - 1).dot(part.tail(cols - j - 1)) +
+        const T known = l.col(j).segment(j + 1, cols - j - 1).dot(part.tail(cols - j - 1)) +
                              l.col(j).tail(below).dot(t);
         part[j] = (part[j] - known) / l(j, j);
     }
@@ -90,33 +113,31 @@ void SupernodalCholesky::solveBackward(std::size_t s, double* yData, double* scr
 // among its columns in increasing descendant order (the order in which the sequential solve
 // pushes them there); the backward one reads only its ancestors' finished entries. Tasks run
 // as in the factorization, forward children first, backward parents first.
-void SupernodalCholesky::solveParallel(std::span<double> b, ThreadPool& pool) const {
+template <class T>
+void SupernodalCholesky::solveParallel(T* y, ThreadPool& pool) const {
     const std::size_t supers = superStart_.size() - 1;
     const std::size_t tasks = taskStart_.size() - 1;
     const auto threads = static_cast<std::size_t>(pool.size());
-    Eigen::VectorXd y(static_cast<Eigen::Index>(dimension_));
-    for (std::size_t k = 0; k < dimension_; ++k)
-        y[static_cast<Eigen::Index>(k)] = b[static_cast<std::size_t>(perm_[k])];
-    if (belowProducts_.size() != static_cast<std::size_t>(belowStart_[supers]))
-        belowProducts_.resize(static_cast<std::size_t>(belowStart_[supers]));
-    std::vector<Eigen::VectorXd> scratch(threads,
-                                         Eigen::VectorXd(static_cast<Eigen::Index>(maxRows_)));
+    std::vector<T>& products = belowProducts<T>();
+    if (products.size() != static_cast<std::size_t>(belowStart_[supers]))
+        products.resize(static_cast<std::size_t>(belowStart_[supers]));
+    std::vector<Vector<T>> scratch(threads, Vector<T>(static_cast<Eigen::Index>(maxRows_)));
 
-    auto forward = [&](std::size_t s, Eigen::VectorXd& t) {
+    auto forward = [&](std::size_t s, Vector<T>& t) {
         for (std::int64_t u = updateStart_[s]; u < updateStart_[s + 1]; ++u) {
             const Update& update = updates_[static_cast<std::size_t>(u)];
             const std::size_t d = update.source;
             const std::int64_t* sourceRows = rows_.data() + rowStart_[d];
-            const double* product =
-                belowProducts_.data() + belowStart_[d] - (superStart_[d + 1] - superStart_[d]);
+            const T* product =
+                products.data() + belowStart_[d] - (superStart_[d + 1] - superStart_[d]);
             for (std::uint32_t i = update.begin; i < update.end; ++i)
                 y[sourceRows[i]] -= product[i];
         }
-        const std::int64_t below = solveForward(s, y.data(), t.data());
-        std::copy(t.data(), t.data() + below, belowProducts_.data() + belowStart_[s]);
+        const std::int64_t below = solveForward<T>(s, y, t.data());
+        std::copy(t.data(), t.data() + below, products.data() + belowStart_[s]);
     };
-    auto backward = [&](std::size_t s, Eigen::VectorXd& t) {
-        solveBackward(s, y.data(), t.data());
+    auto backward = [&](std::size_t s, Vector<T>& t) {
+        solveBackward<T>(s, y, t.data());
     };
 
     // Backward, a task is ready when its parent task is done.
@@ -142,7 +163,7 @@ void SupernodalCholesky::solveParallel(std::span<double> b, ThreadPool& pool) co
                 ready.push_back(static_cast<std::uint32_t>(t));
         std::mutex mutex;
         std::size_t remaining = tasks;
-        auto loop = [&](Eigen::VectorXd& t) {
+        auto loop = [&](Vector<T>& t) {
             for (;;) {
                 std::uint32_t task = kNone;
                 {
@@ -181,8 +202,6 @@ void SupernodalCholesky::solveParallel(std::span<double> b, ThreadPool& pool) co
                 loop(scratch[w]);
         });
     }
-    for (std::size_t k = 0; k < dimension_; ++k)
-        b[static_cast<std::size_t>(perm_[k])] = y[static_cast<Eigen::Index>(k)];
 }
 
 } // namespace netsculpt
