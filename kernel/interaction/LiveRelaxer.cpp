@@ -293,7 +293,7 @@ void LiveRelaxer::runJob(Job& job) {
             o.startTensions = hint;
             o.tolerance = options_.previewTolerance;
             o.continuation = relaxer_->name() == "fast";
-            o.singlePrecisionSteps = true; // its steps are hinted, its tolerance loose
+            o.singlePrecisionSteps = options_.singlePrecisionSteps;
             o.maxSeconds = options_.maxSeconds;
             // Every report reaches the callback, which publishes when waiting for the next one
             // (about as far off as the last one was) would keep a shape on screen longer than the

@@ -51,6 +51,8 @@ struct LiveRelaxOptions {
     double publishInterval = 1.0 / 30; ///< s, at least, between two published preview shapes
     std::string backend = "auto";     ///< see makeRelaxer
     int threads = 0;                  ///< RelaxOptions::threads
+    /// RelaxOptions::singlePrecisionSteps for the preview's hinted runs (after an edit)
+    bool singlePrecisionSteps = true;
     /// Called on the worker thread right after each publication, with the state published (to
     /// wake a UI, or to time publications). Empty = none. Must not call back into the relaxer.
     std::function<void(const LiveState&)> onPublish;

@@ -18,6 +18,8 @@
 //   --preview-scale S                    the preview's stiffness scale (default: the studio's)
 //   --threads N                          the preview's threads (default: the studio's, every
 //                                        hardware thread but the one it keeps for its frames)
+//   --double-steps                       the hinted steps in double precision throughout (the
+//                                        studio's are single, refined in double)
 //   --only bar|rows                      one of the two drags (for profiling)
 
 #include "commands/Document.h"
@@ -196,6 +198,8 @@ int main(int argc, char** argv) {
             steps = std::atoi(argv[++i]);
         else if (arg == "--threads" && i + 1 < argc)
             options.threads = std::atoi(argv[++i]);
+        else if (arg == "--double-steps")
+            options.singlePrecisionSteps = false;
         else if (arg == "--preview-scale" && i + 1 < argc)
             options.previewStiffnessScale = std::atof(argv[++i]);
         else if (arg == "--backend" && i + 1 < argc)
@@ -205,7 +209,8 @@ int main(int argc, char** argv) {
             only = argv[++i];
         else {
             std::fprintf(stderr, "usage: %s [--knots N] [--steps N] [--backend NAME] "
-                                 "[--preview-scale S] [--threads N] [--only bar|rows]\n",
+                                 "[--preview-scale S] [--threads N] [--double-steps] "
+                                 "[--only bar|rows]\n",
                          argv[0]);
             return 2;
         }
@@ -222,11 +227,13 @@ int main(int argc, char** argv) {
         const Piece start = doc.sculpture().pieces.begin()->second;
         const MassSpringSystem& system = doc.compiled().system;
         std::printf("netsculpt-bench-live: the studio's demo tube, %zu knots, %zu bars, %d x %d; "
-                    "preview backend %s, stiffness x%.3g, tolerance %.0e, %d thread(s); "
-                    "built for %s\n",
+                    "preview backend %s, stiffness x%.3g, tolerance %.0e, %d thread(s), hinted "
+                    "steps in %s precision; built for %s\n",
                     system.knotCount(), system.barCount(), start.rows, start.columns,
                     options.backend.c_str(), previewScale(system, options.previewStiffnessScale),
-                    options.previewTolerance, options.threads, bench::instructionSet());
+                    options.previewTolerance, options.threads,
+                    options.singlePrecisionSteps ? "single" : "double",
+                    bench::instructionSet());
         PublicationLog log;
         options.onPublish = [&log](const LiveState& state) { log.record(state); };
         LiveRelaxer live(options);
