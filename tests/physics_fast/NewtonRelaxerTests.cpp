@@ -273,6 +273,29 @@ std::vector<double> tensionsBefore(const MassSpringSystem& before, const MassSpr
     return barTensions(law);
 }
 
+/// A 20 x 40 tube of `stiffness` (EA, N) relaxed by `relaxer`, then its bars lengthened by 0.5 %
+/// (a drag step): the system before, and after the edit from its Eq. 2 geometry (cold) and from
+/// the relaxed positions (carried).
+struct LengthenedTube {
+    CompiledSculpture before;
+    MassSpringSystem cold, carried;
+};
+
+LengthenedTube lengthenedTube(double stiffness, FastRelaxer& relaxer) {
+    Sculpture s = tube(20, 40, stiffness);
+    const PieceId piece = s.pieces.begin()->first;
+    LengthenedTube t{compileSculpture(s), {}, {}};
+    REQUIRE(relaxer.relax(t.before.system, RelaxOptions{}).converged);
+    auto [ignored, after] = applyAtomically(s, [&](Sculpture& m) {
+        setBarLength(m, piece, std::nullopt, 0.1 * 1.005);
+        return 0;
+    });
+    t.cold = after.system;
+    REQUIRE(carryPositions(t.before, after) > 0);
+    t.carried = after.system;
+    return t;
+}
+
 } // namespace
 
 TEST_CASE("fast: a start hinted with the tensions before a bar-length edit converges in two or "
@@ -281,19 +304,10 @@ TEST_CASE("fast: a start hinted with the tensions before a bar-length edit conve
     // A tube at a soft stiffness (the studio's preview scale of the rope): at its equilibrium the
     // bars are stretched by less than the 0.5 % of a drag step, so after the step every bar is
     // slack and the strain test sees a cold start.
-    Sculpture s = tube(20, 40, 2e3);
-    const PieceId piece = s.pieces.begin()->first;
-    CompiledSculpture before = compileSculpture(s);
     FastRelaxer relaxer;
-    REQUIRE(relaxer.relax(before.system, RelaxOptions{}).converged);
-
-    auto [ignored, after] = applyAtomically(s, [&](Sculpture& m) {
-        setBarLength(m, piece, std::nullopt, 0.1 * 1.005);
-        return 0;
-    });
-    const MassSpringSystem cold = after.system;
-    REQUIRE(carryPositions(before, after) > 0);
-    const MassSpringSystem carried = after.system;
+    const LengthenedTube edit = lengthenedTube(2e3, relaxer);
+    const MassSpringSystem& cold = edit.cold;
+    const MassSpringSystem& carried = edit.carried;
     std::size_t slack = 0;
     for (double t : barTensions(carried))
         slack += t < 0 ? 1 : 0;
@@ -306,7 +320,7 @@ TEST_CASE("fast: a start hinted with the tensions before a bar-length edit conve
     const NewtonStatistics plainStats = relaxer.statistics();
     CHECK(plainStats.softIterations > 0);
 
-    const std::vector<double> hint = tensionsBefore(before.system, carried);
+    const std::vector<double> hint = tensionsBefore(edit.before.system, carried);
     RelaxOptions options;
     options.startTensions = hint;
     MassSpringSystem hinted = carried;
@@ -339,18 +353,10 @@ TEST_CASE("fast: a hinted start's single-precision steps reach the double ones' 
     // The drag step above at the preview's stiffness, and the same at the rope's (whose Newton
     // matrix is a hundred times worse conditioned) to 1e-6.
     for (const double stiffness : {2e3, 2e5}) {
-        Sculpture s = tube(20, 40, stiffness);
-        const PieceId piece = s.pieces.begin()->first;
-        CompiledSculpture before = compileSculpture(s);
         FastRelaxer relaxer;
-        REQUIRE(relaxer.relax(before.system, RelaxOptions{}).converged);
-        auto [ignored, after] = applyAtomically(s, [&](Sculpture& m) {
-            setBarLength(m, piece, std::nullopt, 0.1 * 1.005);
-            return 0;
-        });
-        REQUIRE(carryPositions(before, after) > 0);
-        const MassSpringSystem carried = after.system;
-        const std::vector<double> hint = tensionsBefore(before.system, carried);
+        const LengthenedTube edit = lengthenedTube(stiffness, relaxer);
+        const MassSpringSystem& carried = edit.carried;
+        const std::vector<double> hint = tensionsBefore(edit.before.system, carried);
         RelaxOptions options;
         options.startTensions = hint;
         MassSpringSystem doubled = carried;
