@@ -7,7 +7,9 @@
 //   there would longjmp through C++ frames. They are bounded by the kernel's own limits, and
 //   the next allocation the script makes fails if the total is then over the limit.
 // - instructions: a count hook adds up the VM instructions the script executes and raises
-//   "script exceeded its budget of 10^9 instructions" when they pass the budget.
+//   "script exceeded its budget of 10^9 instructions" when they pass the budget. Time spent
+//   inside one C function (a backtracking pattern in string.find, a long relaxation) is not
+//   counted: the hook runs between instructions, and nothing here limits wall time.
 // Once a limit is hit the script cannot continue: pcall, xpcall and coroutine.resume re-raise
 // the error instead of returning it, and the hook raises it again at every turn.
 
