@@ -50,6 +50,27 @@ std::string minimalDxf(const std::string& entities) {
     return "0\nSECTION\n2\nENTITIES\n" + entities + "0\nENDSEC\n0\nEOF\n";
 }
 
+/// Writes `text` to `file` and checks that importing it in metres is refused with a message that
+/// names the file and holds every one of `parts`.
+void refusesInMetres(const std::filesystem::path& file, const std::string& text,
+                     std::initializer_list<std::string> parts) {
+    const std::string name = file.filename().string();
+    INFO(name);
+    writeText(file, text);
+    ImportOptions metres;
+    metres.units = "m";
+    try {
+        importRailsFile(file, metres);
+        FAIL("no error");
+    } catch (const UserError& e) {
+        const std::string message = e.what();
+        INFO(message);
+        CHECK_THAT(message, Contains(name));
+        for (const auto& part : parts)
+            CHECK_THAT(message, Contains(part));
+    }
+}
+
 } // namespace
 
 TEST_CASE("DXF SPLINE: open and non-uniform, and a rational quarter circle") {
@@ -214,18 +235,7 @@ TEST_CASE("DXF: counts that disagree with the values, branches, text that is not
     metres.units = "m";
     const auto fails = [&](const std::string& name, const std::string& text,
                            std::initializer_list<std::string> parts) {
-        INFO(name);
-        writeText(dir / name, text);
-        try {
-            importRailsFile(dir / name, metres);
-            FAIL("no error");
-        } catch (const UserError& e) {
-            const std::string message = e.what();
-            INFO(message);
-            CHECK_THAT(message, Contains(name));
-            for (const auto& part : parts)
-                CHECK_THAT(message, Contains(part));
-        }
+        refusesInMetres(dir / name, text, parts);
     };
     // dxflib would silently pad the knot vector with zeros: the scan refuses the file first.
     fails("declared.dxf",
@@ -274,22 +284,9 @@ TEST_CASE("DXF: the counts dxflib allocates by are bounded and given once, in ev
     // dxflib allocates an array by each count as it reads it: these files asked for up to 64 GB,
     // and a repeated LWPOLYLINE count freed dxflib's array twice.
     const auto dir = outputDir("dxf-counts");
-    ImportOptions metres;
-    metres.units = "m";
     const auto fails = [&](const std::string& name, const std::string& text,
                            std::initializer_list<std::string> parts) {
-        INFO(name);
-        writeText(dir / name, text);
-        try {
-            importRailsFile(dir / name, metres);
-            FAIL("no error");
-        } catch (const UserError& e) {
-            const std::string message = e.what();
-            INFO(message);
-            CHECK_THAT(message, Contains(name));
-            for (const auto& part : parts)
-                CHECK_THAT(message, Contains(part));
-        }
+        refusesInMetres(dir / name, text, parts);
     };
     const std::string square = "10\n0\n20\n0\n10\n1\n20\n0\n";
     fails("repeated.dxf",
