@@ -51,4 +51,15 @@ inline std::string_view bytesOf(const std::uint8_t* data, std::size_t size) {
     std::abort();
 }
 
+/// Runs `read`: a UserError is the reader refusing the input, as it should; any other exception
+/// is a finding (unexpected).
+template <class Read> void refusesOnlyWithUserErrors(const char* reader, Read&& read) {
+    try {
+        read();
+    } catch (const UserError&) {
+    } catch (const std::exception& e) {
+        unexpected(reader, e);
+    }
+}
+
 } // namespace netsculpt::fuzz

@@ -51,7 +51,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const auto file = fuzz::writeInput("design.netj", bytes.starts_with("netsculpt-journal")
                                                           ? withGoodCrcs(bytes)
                                                           : std::string(bytes));
-    try {
+    fuzz::refusesOnlyWithUserErrors("Document::load", [&] {
         std::vector<std::string> warnings;
         Document doc = Document::load(file, &warnings);
         const std::uint64_t hash = doc.hash();
@@ -64,9 +64,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         doc.saveSnapshot(snapshot);
         if (Document::load(snapshot).hash() != hash)
             differs("snapshot");
-    } catch (const UserError&) {
-    } catch (const std::exception& e) {
-        fuzz::unexpected("Document::load", e);
-    }
+    });
     return 0;
 }

@@ -13,11 +13,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (data[0] & 1)
         options.units = "mm";
     const auto file = fuzz::writeInput("rails.dxf", fuzz::bytesOf(data + 1, size - 1));
-    try {
-        (void)importRailsFile(file, options);
-    } catch (const UserError&) {
-    } catch (const std::exception& e) {
-        fuzz::unexpected("importRailsFile (DXF)", e);
-    }
+    fuzz::refusesOnlyWithUserErrors("importRailsFile (DXF)",
+                                    [&] { (void)importRailsFile(file, options); });
     return 0;
 }

@@ -14,11 +14,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         options.units = "ft";
     const auto file = fuzz::writeInput((data[0] & 1) ? "rails.csv" : "rails.obj",
                                        fuzz::bytesOf(data + 1, size - 1));
-    try {
-        (void)importRailsFile(file, options);
-    } catch (const UserError&) {
-    } catch (const std::exception& e) {
-        fuzz::unexpected("importRailsFile (OBJ, CSV)", e);
-    }
+    fuzz::refusesOnlyWithUserErrors("importRailsFile (OBJ, CSV)",
+                                    [&] { (void)importRailsFile(file, options); });
     return 0;
 }

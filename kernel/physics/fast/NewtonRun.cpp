@@ -429,18 +429,18 @@ void NewtonRun::hintedStart(double tolerance) {
     double best = residual_;
     shift_ = kFinalMinShift;
     single_ = options_.singlePrecisionSteps;
+    const auto factorizeShifted = [&] {
+        bool factored = factorize();
+        while (!factored && shift_ < kMaxShift) {
+            shift_ = std::max(shift_ * 10, kFailShift);
+            factored = factorize();
+        }
+        return factored;
+    };
     const std::int64_t first = steps_;
     while (steps_ - first < kHintIterations && !(residual_ < tolerance) && !stopRequested()) {
         report(false);
         assemble(true, false);
-        const auto factorizeShifted = [&] {
-            bool factored = factorize();
-            while (!factored && shift_ < kMaxShift) {
-                shift_ = std::max(shift_ * 10, kFailShift);
-                factored = factorize();
-            }
-            return factored;
-        };
         bool factored = factorizeShifted();
         ++steps_;
         if (factored)
