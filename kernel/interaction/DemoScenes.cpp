@@ -75,4 +75,25 @@ void buildLargeDemoSculpture(Document& doc, int knots) {
     doc.execute(AttachToRailCommand{net});
 }
 
+void buildLargeSlackSheet(Document& doc, int knots) {
+    const int columns = std::max(8, int(std::lround(std::sqrt(knots * 2.0))));
+    const int rows = std::max(2, knots / columns);
+    const double spacing = 0.1, bar = 0.1;
+    const double width = (columns - 1) * spacing;
+    // The sheet's height hanging straight: each row's knots between two of the row above.
+    const double height = (rows - 1) * std::sqrt(bar * bar - spacing * spacing / 4);
+    CurveSpec upper, lower;
+    upper.points = {{0, 0, 8.0}, {width, 0, 8.0}};
+    lower.points = {{0, 0.3 * height, 8.0 - 0.5 * height}, {width, 0.3 * height, 8.0 - 0.5 * height}};
+    const RailId top = firstRail(doc.execute(AddRailCommand{"top", upper}));
+    const RailId bottom = firstRail(doc.execute(AddRailCommand{"bottom", lower}));
+    AttachToRailArgs sheet;
+    sheet.rail = top;
+    sheet.columns = columns;
+    sheet.rows = rows;
+    sheet.bar = bar;
+    const PieceId piece = firstPiece(doc.execute(AttachToRailCommand{sheet}));
+    doc.execute(ConnectToRailCommand{piece, bottom, 0.0, false});
+}
+
 } // namespace netsculpt

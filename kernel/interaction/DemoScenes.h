@@ -13,4 +13,9 @@ void buildDemoSculpture(Document& doc);
 /// One closed rail with one tube of about `knots` knots (for frame-rate measurements).
 void buildLargeDemoSculpture(Document& doc, int knots);
 
+/// One sheet of about `knots` knots (twice as many columns as rows) on a straight rail, its last
+/// row tied to a second, parallel rail nearer than the sheet's height, so that it hangs slack
+/// between the two (the paper's Fig. 11 kind of join; for the live preview's measurements).
+void buildLargeSlackSheet(Document& doc, int knots);
+
 } // namespace netsculpt

@@ -14,6 +14,8 @@
 //
 //   netsculpt-bench-live                 the studio's 20k-knot demo tube, 20 + 10 steps
 //   netsculpt-bench-live --knots N       another size      --steps N   steps per drag
+//   --sheet                              a slack sheet between two parallel rails instead of the
+//                                        tube (interaction/DemoScenes.h), the same size
 //   --backend NAME                       the preview's backend (default: the studio's)
 //   --preview-scale S                    the preview's stiffness scale (default: the studio's)
 //   --threads N                          the preview's threads (default: the studio's, every
@@ -188,6 +190,7 @@ int main(int argc, char** argv) {
     keepFreedMemoryForReuse(); // as the studio does
     int knots = 20000, steps = 20;
     std::string only;
+    bool sheet = false;
     LiveRelaxOptions options; // the studio's
     options.threads = threadsBesideTheFrames();
     for (int i = 1; i < argc; ++i) {
@@ -198,6 +201,8 @@ int main(int argc, char** argv) {
             steps = std::atoi(argv[++i]);
         else if (arg == "--threads" && i + 1 < argc)
             options.threads = std::atoi(argv[++i]);
+        else if (arg == "--sheet")
+            sheet = true;
         else if (arg == "--double-steps")
             options.singlePrecisionSteps = false;
         else if (arg == "--preview-scale" && i + 1 < argc)
@@ -209,7 +214,7 @@ int main(int argc, char** argv) {
             only = argv[++i];
         else {
             std::fprintf(stderr, "usage: %s [--knots N] [--steps N] [--backend NAME] "
-                                 "[--preview-scale S] [--threads N] [--double-steps] "
+                                 "[--preview-scale S] [--threads N] [--sheet] [--double-steps] "
                                  "[--only bar|rows]\n",
                          argv[0]);
             return 2;
@@ -222,13 +227,17 @@ int main(int argc, char** argv) {
     }
     try {
         Document doc;
-        buildLargeDemoSculpture(doc, knots);
+        if (sheet)
+            buildLargeSlackSheet(doc, knots);
+        else
+            buildLargeDemoSculpture(doc, knots);
         const PieceId piece = doc.sculpture().pieces.begin()->first;
         const Piece start = doc.sculpture().pieces.begin()->second;
         const MassSpringSystem& system = doc.compiled().system;
-        std::printf("netsculpt-bench-live: the studio's demo tube, %zu knots, %zu bars, %d x %d; "
+        std::printf("netsculpt-bench-live: %s, %zu knots, %zu bars, %d x %d; "
                     "preview backend %s, stiffness x%.3g, tolerance %.0e, %d thread(s), hinted "
                     "steps in %s precision; built for %s\n",
+                    sheet ? "a slack sheet between two rails" : "the studio's demo tube",
                     system.knotCount(), system.barCount(), start.rows, start.columns,
                     options.backend.c_str(), previewScale(system, options.previewStiffnessScale),
                     options.previewTolerance, options.threads,
