@@ -410,9 +410,10 @@ void NewtonRun::keepIfBest() {
 /// it back a hundred times too far). The first iteration is then the tangent predictor of the edit
 /// (the linear response of the hinted state to the new rest lengths, stiffnesses and loads) and
 /// the next ones converge quadratically, as long as the bars the hint has taut are taut at the
-/// equilibrium. At most kHintIterations, down to `tolerance`; the state reached is kept only when
-/// its residual under the material's law is below the start's and kHintKeepResidual, and the run
-/// goes on from there (the usual decision: a start near the equilibrium is warm).
+/// equilibrium. At most kHintIterations, down to `tolerance`, until they stall (kHintStallRatio);
+/// the state reached is kept only when its residual under the material's law is below the start's
+/// and kHintKeepResidual, and the run goes on from there (the usual decision: a start near the
+/// equilibrium is warm).
 void NewtonRun::hintedStart(double tolerance) {
     const std::span<const double> hint = options_.startTensions;
     const std::vector<Vec3> start = x_;
@@ -470,7 +471,10 @@ void NewtonRun::hintedStart(double tolerance) {
         residual_ = evaluate(x_);
         if (alpha == 1.0)
             shift_ = std::max(shift_ * 0.1, kFinalMinShift);
+        const bool stalled = steps_ - first >= 2 && residual_ > kHintStallRatio * best;
         best = std::min(best, residual_);
+        if (stalled)
+            break;
     }
     single_ = false;
     stats_.hintIterations = steps_ - first;
