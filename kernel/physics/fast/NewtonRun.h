@@ -82,7 +82,7 @@ constexpr int kHintIterations = 6;
 // whose bar lengths are dragged: bars the hint has taut go slack, the hinted iterations stall
 // near 4e-3 with 0.03-0.6 left under the material's law, and the run gets on faster from there:
 // in netsculpt-bench-live --sheet a bar-length step's median Newton iterations 10 -> 9, a row
-// step's 91 -> 87).
+// step's 93 -> 80).
 constexpr double kHintStallRatio = 0.5;
 // The state those iterations reach is kept only when its residual is below the start's and below
 // this: further off, the hint did not fit (sixty rows added below a relaxed piece: 1.6e8 knot
