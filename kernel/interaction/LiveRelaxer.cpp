@@ -294,6 +294,7 @@ void LiveRelaxer::runJob(Job& job) {
             o.tolerance = options_.previewTolerance;
             o.continuation = relaxer_->name() == "fast";
             o.singlePrecisionSteps = options_.singlePrecisionSteps;
+            o.focusAfterHint = true; // a slack net's folds settle on their own after a drag
             o.maxSeconds = options_.maxSeconds;
             // Every report reaches the callback, which publishes when waiting for the next one
             // (about as far off as the last one was) would keep a shape on screen longer than the

@@ -71,6 +71,14 @@ struct RelaxOptions {
     /// the tolerance loose, such as the studio's preview after an edit. Others ignore it. It
     /// changes how the equilibrium is found, never what counts as converged.
     bool singlePrecisionSteps = false;
+    /// Fast backend: when the iterations seeded with startTensions end short of the tolerance,
+    /// the knots still out of balance and rings of their neighbours are relaxed on their own at
+    /// once, the rest held (a focus region, physics/fast/FocusRegion.h), before the whole net's
+    /// iterations go on. Worth it in the studio's preview of a slack net, where a drag leaves a
+    /// few hundred knots of its folds to settle; not at the rope's stiffness, where a region held
+    /// at its boundary can choose another way down for a slack piece (docs/performance.md). Others
+    /// ignore it. It changes how the equilibrium is found, never what counts as converged.
+    bool focusAfterHint = false;
 };
 
 struct RelaxResult {

@@ -195,18 +195,18 @@ TEST_CASE("live relaxer: after a drag step the preview re-converges in a few New
     CHECK(maxDistance(warmLonger.position, coldLonger.position) < 1e-8);
 }
 
-TEST_CASE("live relaxer: a slack sheet between two rails re-converges after a bar-length step, at "
-          "the equilibrium a cold start finds", "[live]") {
+TEST_CASE("live relaxer: a slack sheet between two rails re-converges after a bar-length step, on "
+          "the equilibrium a plain warm relaxation from the shape shown reaches", "[live]") {
     Document doc;
-    buildLargeSlackSheet(doc, 600);
+    buildLargeSlackSheet(doc, 2000); // enough knots for a focus region after the hinted steps
     const MassSpringSystem& system = doc.compiled().system;
     std::size_t fixed = 0;
     for (std::size_t j = 0; j < system.knotCount(); ++j) fixed += system.fixed[j];
     const auto& [sheet, piece] = *doc.sculpture().pieces.begin();
-    const int columns = piece.columns;
-    CHECK(system.knotCount() >= 540);
-    CHECK(system.knotCount() <= 660);
-    CHECK(fixed == 2 * std::size_t(columns)); // the first row on one rail, the last on the other
+    CHECK(system.knotCount() >= 1800);
+    CHECK(system.knotCount() <= 2200);
+    // The first row on one rail, the last on the other.
+    CHECK(fixed == 2 * std::size_t(piece.columns));
     LiveRelaxOptions options;
     options.backend = "fast";
     LiveRelaxer live(options);
@@ -224,12 +224,16 @@ TEST_CASE("live relaxer: a slack sheet between two rails re-converges after a ba
     const auto lengthened = previewAndShow(doc, live, 2);
     CHECK(lengthened->converged);
     CHECK(lengthened->residual < options.previewTolerance);
-    // Both taken on to 1e-8 (this sheet's precision floor is near 1.4e-9) meet.
-    const MassSpringSystem cold = softEquilibrium(doc, {}, 1e-8);
+    // The preview (hinted steps, a focus region) stays on the equilibrium that the new law's
+    // plain fast relaxation from the shape shown before the edit reaches; both taken on to 1e-8
+    // (this sheet's precision floor is near 1.4e-9) meet. A slack net can hang in more than one
+    // equilibrium: from its Eq. 2 start this one reaches another, whose free edge's fold lies up to
+    // 8 cm away (docs/performance.md), as a real net edited in place would not jump to.
+    const MassSpringSystem plain = softEquilibrium(doc, settled->positions, 1e-8);
     const MassSpringSystem warm = softEquilibrium(doc, lengthened->positions, 1e-8);
     INFO("first settle " << settled->steps << " iterations, bar-length step " << lengthened->steps);
-    CHECK(maxDistance(warm.position, cold.position) < 1e-6);
-    CHECK(maxDistance(lengthened->positions, cold.position) < 1e-4);
+    CHECK(maxDistance(warm.position, plain.position) < 1e-6);
+    CHECK(maxDistance(lengthened->positions, plain.position) < 1e-5);
 }
 
 TEST_CASE("live relaxer: the hint holds the tensions before the edit, and new rows go on from the rows above", "[live]") {
