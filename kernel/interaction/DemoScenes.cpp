@@ -75,7 +75,7 @@ void buildLargeDemoSculpture(Document& doc, int knots) {
     doc.execute(AttachToRailCommand{net});
 }
 
-void buildLargeSlackSheet(Document& doc, int knots) {
+void buildLargeSlackSheet(Document& doc, int knots, bool tied) {
     const int columns = std::max(8, int(std::lround(std::sqrt(knots * 2.0))));
     const int rows = std::max(2, knots / columns);
     const double spacing = 0.1, bar = 0.1;
@@ -93,7 +93,8 @@ void buildLargeSlackSheet(Document& doc, int knots) {
     sheet.rows = rows;
     sheet.bar = bar;
     const PieceId piece = firstPiece(doc.execute(AttachToRailCommand{sheet}));
-    doc.execute(ConnectToRailCommand{piece, bottom, 0.0, false});
+    if (tied)
+        doc.execute(ConnectToRailCommand{piece, bottom, 0.0, false});
 }
 
 } // namespace netsculpt

@@ -16,6 +16,7 @@ void buildLargeDemoSculpture(Document& doc, int knots);
 /// One sheet of about `knots` knots (twice as many columns as rows) on a straight rail, its last
 /// row tied to a second, parallel rail nearer than the sheet's height, so that it hangs slack
 /// between the two (the paper's Fig. 11 kind of join; for the live preview's measurements).
-void buildLargeSlackSheet(Document& doc, int knots);
+/// tied = false: the second rail is there ("bottom") but the sheet hangs from the first alone.
+void buildLargeSlackSheet(Document& doc, int knots, bool tied = true);
 
 } // namespace netsculpt

@@ -23,6 +23,9 @@
 //   --double-steps                       the hinted steps in double precision throughout (the
 //                                        studio's are single, refined in double)
 //   --only bar|rows                      one of the two drags (for profiling)
+//   --connect                            instead of the drags, the slack sheet's connection: it
+//                                        settles hanging from its top rail alone, then its last
+//                                        row is connected to the lower rail (one edit)
 
 #include "commands/Document.h"
 #include "interaction/DemoScenes.h"
@@ -184,13 +187,33 @@ void runDrag(const char* name, Document& doc, LiveRelaxer& live, const Publicati
     printPublications("shapes shown", shown);
 }
 
+/// The sheet's last row connected to its lower rail ("bottom") after it has settled hanging
+/// from the top one: one edit that swings the whole sheet into its U.
+void runConnect(Document& doc, LiveRelaxer& live, const PublicationLog& log,
+                std::uint64_t& generation, PieceId piece) {
+    RailId bottom;
+    for (const auto& [id, rail] : doc.sculpture().rails)
+        if (rail.name == "bottom")
+            bottom = id;
+    const auto t0 = Clock::now();
+    doc.execute(ConnectToRailCommand{piece, bottom, 0.0, false});
+    const double editSeconds = secondsSince(t0);
+    const StepTiming timing = previewNow(doc, live, ++generation);
+    std::printf("connect     edit %.1f ms  re-relax %.2f s (%s, %lld steps)\n", 1e3 * editSeconds,
+                timing.relaxSeconds, timing.converged ? "converged" : "not converged",
+                static_cast<long long>(timing.steps));
+    Publications shown;
+    shown.add(log.of(generation));
+    printPublications("shapes shown", shown);
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
     keepFreedMemoryForReuse(); // as the studio does
     int knots = 20000, steps = 20;
     std::string only;
-    bool sheet = false;
+    bool sheet = false, connect = false;
     LiveRelaxOptions options; // the studio's
     options.threads = threadsBesideTheFrames();
     for (int i = 1; i < argc; ++i) {
@@ -203,6 +226,8 @@ int main(int argc, char** argv) {
             options.threads = std::atoi(argv[++i]);
         else if (arg == "--sheet")
             sheet = true;
+        else if (arg == "--connect")
+            sheet = connect = true;
         else if (arg == "--double-steps")
             options.singlePrecisionSteps = false;
         else if (arg == "--preview-scale" && i + 1 < argc)
@@ -215,7 +240,7 @@ int main(int argc, char** argv) {
         else {
             std::fprintf(stderr, "usage: %s [--knots N] [--steps N] [--backend NAME] "
                                  "[--preview-scale S] [--threads N] [--sheet] [--double-steps] "
-                                 "[--only bar|rows]\n",
+                                 "[--only bar|rows] [--connect]\n",
                          argv[0]);
             return 2;
         }
@@ -228,16 +253,19 @@ int main(int argc, char** argv) {
     try {
         Document doc;
         if (sheet)
-            buildLargeSlackSheet(doc, knots);
+            buildLargeSlackSheet(doc, knots, !connect);
         else
             buildLargeDemoSculpture(doc, knots);
         const PieceId piece = doc.sculpture().pieces.begin()->first;
         const Piece start = doc.sculpture().pieces.begin()->second;
         const MassSpringSystem& system = doc.compiled().system;
+        const char* scene = connect ? "a sheet hanging from one of two rails"
+                            : sheet ? "a slack sheet between two rails"
+                                    : "the studio's demo tube";
         std::printf("netsculpt-bench-live: %s, %zu knots, %zu bars, %d x %d; "
                     "preview backend %s, stiffness x%.3g, tolerance %.0e, %d thread(s), hinted "
                     "steps in %s precision; built for %s\n",
-                    sheet ? "a slack sheet between two rails" : "the studio's demo tube",
+                    scene,
                     system.knotCount(), system.barCount(), start.rows, start.columns,
                     options.backend.c_str(), previewScale(system, options.previewStiffnessScale),
                     options.previewTolerance, options.threads,
@@ -254,6 +282,10 @@ int main(int argc, char** argv) {
         Publications settling;
         settling.add(log.of(generation));
         printPublications("shapes shown while it settles", settling);
+        if (connect) {
+            runConnect(doc, live, log, generation, piece);
+            return 0;
+        }
         const double bar = start.bar.at(0);
         if (only != "rows")
             runDrag("bar length", doc, live, log, generation, steps, [&](int step) -> Command {

@@ -147,7 +147,8 @@ void NewtonRun::runStage(const Stage& stage, bool lastStage, bool slack) {
     std::int64_t sinceRegion = stageStart; // the stage's start or its last focus region's end
     if (lastStage)
         keepIfBest();
-    if (lastStage && options_.focusAfterHint && stats_.hintIterations > 0 && stage.scale == 1.0 &&
+    // Right after hinted iterations whose state was kept (RelaxOptions::focusAfterHint).
+    if (lastStage && options_.focusAfterHint && steps_ == hintKeptAt_ && stage.scale == 1.0 &&
         !(residual_ < stage.tolerance) && relaxRegion(stage.tolerance, mixed)) {
         sinceRegion = steps_;
         keepIfBest();

@@ -482,7 +482,9 @@ void NewtonRun::hintedStart(double tolerance) {
     compressionBlend_ = -1;
     setCompression(0.0);
     residual_ = evaluate(x_);
-    if (!(residual_ < startResidual && residual_ < kHintKeepResidual)) {
+    if (residual_ < startResidual && residual_ < kHintKeepResidual) {
+        hintKeptAt_ = steps_;
+    } else {
         x_ = start;
         residual_ = evaluate(x_);
     }

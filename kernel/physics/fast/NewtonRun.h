@@ -291,6 +291,7 @@ class NewtonRun {
     bool bent_ = false; ///< the current step's path is x + a p + a^2 / 2 c
     bool thirdOrder_ = false; ///< ... + a^3 / 6 e
     bool single_ = false; ///< factorize in single precision (hintedStart, kSingleProgress)
+    std::int64_t hintKeptAt_ = -1; ///< steps_ when the hinted iterations' state was kept
     double compressionBlend_ = 0;
     double residual_ = 0;            ///< at x_, current scale
     double shift_ = kMinShift;       ///< lambda of the Levenberg shift
