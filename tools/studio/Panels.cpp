@@ -155,6 +155,8 @@ void Panels::drawToolbar(App& app) {
                                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
                                    ImGuiWindowFlags_NoMove;
     if (ImGui::Begin("##toolbar", nullptr, flags)) {
+        toolbarRight_ = ImGui::GetWindowPos().x + ImGui::GetWindowSize().x;
+        toolbarBottom_ = ImGui::GetWindowPos().y + ImGui::GetWindowSize().y;
         Interaction& ui = app.interaction();
         for (Mode m : kAllModes) {
             const bool active = ui.mode() == m;
@@ -179,7 +181,9 @@ void Panels::drawToolbar(App& app) {
 
 void Panels::drawSolver(App& app) {
     const ImGuiViewport* vp = ImGui::GetMainViewport();
-    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x - kRightWidth - 8, vp->Pos.y + menuHeight_ + 8));
+    const float left = vp->Pos.x + vp->Size.x - kRightWidth - 8;
+    const float top = toolbarRight_ + 8 > left ? toolbarBottom_ + 8 : vp->Pos.y + menuHeight_ + 8;
+    ImGui::SetNextWindowPos(ImVec2(left, top));
     ImGui::SetNextWindowSize(ImVec2(kRightWidth, 0));
     ImGui::SetNextWindowBgAlpha(0.85f);
     if (ImGui::Begin("Solver", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |

@@ -49,6 +49,9 @@ class Panels {
     float colour_[3] = {0, 0, 0};
     bool colourPending_ = false;
     float menuHeight_ = 0;
+    /// px, the toolbar's right and bottom edges in the last frame: in a narrow window the solver
+    /// panel goes below the toolbar instead of over its last buttons.
+    float toolbarRight_ = 0, toolbarBottom_ = 0;
 };
 
 } // namespace netsculpt::studio
