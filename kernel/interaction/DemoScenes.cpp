@@ -82,9 +82,10 @@ void buildLargeSlackSheet(Document& doc, int knots, bool tied) {
     const double width = (columns - 1) * spacing;
     // The sheet's height hanging straight: each row's knots between two of the row above.
     const double height = (rows - 1) * std::sqrt(bar * bar - spacing * spacing / 4);
+    const double lowerY = 0.3 * height, lowerZ = 8.0 - 0.5 * height; // the second rail's place
     CurveSpec upper, lower;
     upper.points = {{0, 0, 8.0}, {width, 0, 8.0}};
-    lower.points = {{0, 0.3 * height, 8.0 - 0.5 * height}, {width, 0.3 * height, 8.0 - 0.5 * height}};
+    lower.points = {{0, lowerY, lowerZ}, {width, lowerY, lowerZ}};
     const RailId top = firstRail(doc.execute(AddRailCommand{"top", upper}));
     const RailId bottom = firstRail(doc.execute(AddRailCommand{"bottom", lower}));
     AttachToRailArgs sheet;
