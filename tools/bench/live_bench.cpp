@@ -26,6 +26,10 @@
 //   --connect                            instead of the drags, the slack sheet's connection: it
 //                                        settles hanging from its top rail alone, then its last
 //                                        row is connected to the lower rail (one edit)
+//   --on-screen                          keeps every published shape and prints, for the drags
+//                                        that keep the knots, how far the shape on screen one to
+//                                        four frames after each edit is from the settled one (the
+//                                        copies cost the worker about 0.1 ms a shape)
 
 #include "commands/Document.h"
 #include "interaction/DemoScenes.h"
@@ -64,9 +68,11 @@ std::shared_ptr<const LiveState> awaitRun(const LiveRelaxer& live, std::uint64_t
     }
 }
 
-/// When the shapes of each run were published (LiveState::seconds, from the run's start).
+/// When the shapes of each run were published (LiveState::seconds, from the run's start), and with
+/// keepShapes the shapes themselves, until taken.
 class PublicationLog {
   public:
+    explicit PublicationLog(bool keepShapes) : keepShapes_(keepShapes) {}
     /// A shape counts once: the end of a run publishes again the positions of its last report.
     void record(const LiveState& state) {
         if (state.positions.empty())
@@ -76,6 +82,8 @@ class PublicationLog {
             times_.back().steps == state.steps)
             return;
         times_.push_back({state.generation, state.steps, state.seconds});
+        if (keepShapes_)
+            shapes_.push_back({state.generation, state.seconds, state.positions});
     }
     /// Publication times of one run, in order.
     std::vector<double> of(std::uint64_t generation) const {
@@ -86,6 +94,20 @@ class PublicationLog {
                 times.push_back(entry.seconds);
         return times;
     }
+    struct Shape {
+        std::uint64_t generation;
+        double seconds;
+        std::vector<Vec3> positions;
+    };
+    /// The shapes kept of one run, in order; the log forgets them.
+    std::vector<Shape> takeShapes(std::uint64_t generation) {
+        std::lock_guard lock(mutex_);
+        std::vector<Shape> taken, kept;
+        for (Shape& shape : shapes_)
+            (shape.generation == generation ? taken : kept).push_back(std::move(shape));
+        shapes_ = std::move(kept);
+        return taken;
+    }
 
   private:
     struct Entry {
@@ -93,8 +115,42 @@ class PublicationLog {
         std::int64_t steps;
         double seconds;
     };
+    const bool keepShapes_;
     mutable std::mutex mutex_;
     std::vector<Entry> times_;
+    std::vector<Shape> shapes_;
+};
+
+double largestDistance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+    double largest = 0;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        largest = std::max(largest, distance(a[i], b[i]));
+    return largest;
+}
+
+/// What the screen shows during a step's re-relaxation, against the shape it settles in: per
+/// step, the largest distance of any knot from its settled place in the shape on screen k frames
+/// after the edit began (the last shape published by then, or the one before the edit).
+struct ShownDistances {
+    static constexpr int kFrames = 4;
+    std::vector<double> atFrame[kFrames]; ///< m, per step, 1 ... kFrames frames after the edit
+    std::vector<double> moved;            ///< m, per step: the settled shape against the one before
+    /// `shapes` are one run's publications (seconds from the run's start), which began
+    /// `editSeconds` after the edit; `before` the shape shown before the edit, `settled` the last.
+    void add(const std::vector<PublicationLog::Shape>& shapes, double editSeconds,
+             const std::vector<Vec3>& before, const std::vector<Vec3>& settled) {
+        if (before.size() != settled.size())
+            return; // a new topology: no knot-by-knot comparison with the shape before
+        moved.push_back(largestDistance(before, settled));
+        for (int k = 1; k <= kFrames; ++k) {
+            const std::vector<Vec3>* shown = &before;
+            for (const auto& shape : shapes)
+                if (editSeconds + shape.seconds <= k * kFrameSeconds &&
+                    shape.positions.size() == settled.size())
+                    shown = &shape.positions;
+            atFrame[k - 1].push_back(largestDistance(*shown, settled));
+        }
+    }
 };
 
 /// When the shapes of runs came: the first after the run's start, the intervals after it.
@@ -150,17 +206,33 @@ void printPublications(const char* what, const Publications& p) {
     std::printf("\n");
 }
 
-void runDrag(const char* name, Document& doc, LiveRelaxer& live, const PublicationLog& log,
+void printShownDistances(const ShownDistances& d) {
+    if (d.moved.empty())
+        return;
+    std::printf("  on screen k frames after the edit, the largest distance of a knot from its "
+                "settled place, median (90%%) over %zu steps:", d.moved.size());
+    for (int k = 1; k <= ShownDistances::kFrames; ++k)
+        std::printf("%s k=%d %.2g (%.2g) mm", k == 1 ? "" : ",", k,
+                    1e3 * percentile(d.atFrame[k - 1], 0.5), 1e3 * percentile(d.atFrame[k - 1], 0.9));
+    std::printf("; a step moves a knot by up to %.3g (%.3g) mm\n", 1e3 * percentile(d.moved, 0.5),
+                1e3 * percentile(d.moved, 0.9));
+}
+
+void runDrag(const char* name, Document& doc, LiveRelaxer& live, PublicationLog& log,
              std::uint64_t& generation, int steps, const std::function<Command(int)>& commandAt) {
     std::vector<double> edit, relax, total, iterations;
     Publications shown;
+    ShownDistances distances;
     int converged = 0, withinFrame = 0;
     for (int step = 1; step <= steps; ++step) {
+        const std::vector<Vec3> before = doc.compiled().system.position;
         const auto t0 = Clock::now();
         doc.execute(commandAt(step), /*merge=*/true);
         const double editSeconds = secondsSince(t0);
         const StepTiming timing = previewNow(doc, live, ++generation);
         shown.add(log.of(generation));
+        distances.add(log.takeShapes(generation), editSeconds, before,
+                      doc.compiled().system.position);
         edit.push_back(editSeconds);
         relax.push_back(timing.relaxSeconds);
         iterations.push_back(static_cast<double>(timing.steps));
@@ -185,11 +257,12 @@ void runDrag(const char* name, Document& doc, LiveRelaxer& live, const Publicati
                 1e3 * *std::max_element(relax.begin(), relax.end()), 1e3 * percentile(total, 0.5),
                 1e3 * percentile(total, 0.9), withinFrame, steps, converged, steps, percentile(iterations, 0.5));
     printPublications("shapes shown", shown);
+    printShownDistances(distances);
 }
 
 /// The sheet's last row connected to its lower rail ("bottom") after it has settled hanging
 /// from the top one: one edit that swings the whole sheet into its U.
-void runConnect(Document& doc, LiveRelaxer& live, const PublicationLog& log,
+void runConnect(Document& doc, LiveRelaxer& live, PublicationLog& log,
                 std::uint64_t& generation, PieceId piece) {
     RailId bottom;
     for (const auto& [id, rail] : doc.sculpture().rails)
@@ -213,7 +286,7 @@ int main(int argc, char** argv) {
     keepFreedMemoryForReuse(); // as the studio does
     int knots = 20000, steps = 20;
     std::string only;
-    bool sheet = false, connect = false;
+    bool sheet = false, connect = false, onScreen = false;
     LiveRelaxOptions options; // the studio's
     options.threads = threadsBesideTheFrames();
     for (int i = 1; i < argc; ++i) {
@@ -228,6 +301,8 @@ int main(int argc, char** argv) {
             sheet = true;
         else if (arg == "--connect")
             sheet = connect = true;
+        else if (arg == "--on-screen")
+            onScreen = true;
         else if (arg == "--double-steps")
             options.singlePrecisionSteps = false;
         else if (arg == "--preview-scale" && i + 1 < argc)
@@ -240,7 +315,7 @@ int main(int argc, char** argv) {
         else {
             std::fprintf(stderr, "usage: %s [--knots N] [--steps N] [--backend NAME] "
                                  "[--preview-scale S] [--threads N] [--sheet] [--double-steps] "
-                                 "[--only bar|rows] [--connect]\n",
+                                 "[--only bar|rows] [--connect] [--on-screen]\n",
                          argv[0]);
             return 2;
         }
@@ -271,7 +346,7 @@ int main(int argc, char** argv) {
                     options.previewTolerance, options.threads,
                     options.singlePrecisionSteps ? "single" : "double",
                     bench::instructionSet());
-        PublicationLog log;
+        PublicationLog log(onScreen);
         options.onPublish = [&log](const LiveState& state) { log.record(state); };
         LiveRelaxer live(options);
         std::uint64_t generation = 1;
