@@ -162,6 +162,28 @@ void LiveRelaxer::workerLoop() {
     idle_.notify_all();
 }
 
+LiveRelaxer::PreviewStart LiveRelaxer::preparePreviewStart(MassSpringSystem& soft) {
+    PreviewStart start;
+    // A preview cancelled by this edit never reached the screen or the document: this one goes on
+    // from where it stopped, not from the shape before it (a drag as fast as the frames cancels
+    // every run within its first iteration or two).
+    const std::size_t carried =
+        previous_ && previewCancelled_ ? carryMatchedPositions(*previous_, soft) : 0;
+    previewCancelled_ = false;
+    // Rows added below go on with the shape above them, and the tensions the start shape had
+    // before the edit make the fast path's predictor. The same edit once more (a drag's next
+    // step) goes on as far as the last step went; its hint is then the new law's tensions there.
+    const std::size_t continued = previous_ ? continueNewRows(*previous_, soft) : 0;
+    start.showAtOnce = carried + continued > 0;
+    start.positions = soft.position; // the step is measured from here
+    const bool repeated = previous_ && extrapolate(*previous_, soft, start.restChange);
+    if (previous_)
+        start.hint = startTensions(repeated ? soft : *previous_, soft);
+    start.before = std::move(previous_);
+    previous_.reset();
+    return start;
+}
+
 LiveRelaxer::ResidualCheck& LiveRelaxer::residualCheckFor(const MassSpringSystem& system) {
     // The force field of a drag's topology is kept from one step to the next (only the law
     // changes): building one touches megabytes of fresh memory, about 12 ms at 20k knots.
@@ -279,22 +301,13 @@ void LiveRelaxer::runJob(Job& job) {
             const double scale = previewScale(job.system, options_.previewStiffnessScale);
             MassSpringSystem soft = job.system;
             scaleStiffness(soft, scale);
-            // Rows added below go on with the shape above them, and the tensions the start shape
-            // had before the edit make the fast path's predictor.
-            // The same edit once more (a drag's next step) goes on as far as the last step went; its
-            // hint is then the new law's tensions there.
-            const std::size_t continued = previous_ ? continueNewRows(*previous_, soft) : 0;
-            std::vector<double> restChange;
-            const std::vector<Vec3> startPositions = soft.position; // the step is measured from here
-            const bool repeated = previous_ && extrapolate(*previous_, soft, restChange);
-            const std::vector<double> hint =
-                previous_ ? startTensions(repeated ? soft : *previous_, soft) : std::vector<double>{};
-            previous_.reset();
-            o.startTensions = hint;
+            PreviewStart start = preparePreviewStart(soft);
+            o.startTensions = start.hint;
             o.tolerance = options_.previewTolerance;
             o.continuation = relaxer_->name() == "fast";
             o.singlePrecisionSteps = options_.singlePrecisionSteps;
             o.focusAfterHint = true; // a slack net's folds settle on their own after a drag
+            o.hintBeforeCancel = true; // a drag as fast as the frames still moves the net
             o.maxSeconds = options_.maxSeconds;
             // Every report reaches the callback, which publishes when waiting for the next one
             // (about as far off as the last one was) would keep a shape on screen longer than the
@@ -303,10 +316,10 @@ void LiveRelaxer::runJob(Job& job) {
             o.progressInterval = 0;
             double lastShown = 0, lastReport = 0;
             state.stiffnessScale = scale;
-            if (continued > 0) {
+            if (start.showAtOnce) {
                 // New rows are shown at once where the rows above lead them: the caller has them
                 // at the document's Eq. 2 offsets, and the first iteration comes after the new
-                // topology's analysis (tens of ms at 20,000 knots).
+                // topology's analysis (tens of ms at 20,000 knots). So is a carried shape.
                 LiveState shown = state;
                 shown.seconds = lastShown = seconds();
                 shown.positions = soft.position;
@@ -332,21 +345,27 @@ void LiveRelaxer::runJob(Job& job) {
             const RelaxResult r = relaxer_->relax(soft, o);
             state.steps = r.steps;
             state.residual = r.residual;
+            bool unmoved = false; // cancelled before it moved its start
             if (r.stopReason == "cancelled" || superseded()) {
                 if (!hasPending()) finish("cancelled", soft.position); // else a newer run follows
+                previewCancelled_ = hasPending();
+                unmoved = soft.position == start.positions;
                 lastStep_.reset();
             } else {
                 state.converged = r.converged;
                 finish(r.stopReason, soft.position);
-                if (r.converged && !restChange.empty()) {
-                    LastStep step{std::vector<Vec3>(soft.knotCount()), std::move(restChange)};
-                    for (std::size_t j = 0; j < soft.knotCount(); ++j) step.displacement[j] = soft.position[j] - startPositions[j];
+                if (r.converged && !start.restChange.empty()) {
+                    LastStep step{std::vector<Vec3>(soft.knotCount()), std::move(start.restChange)};
+                    for (std::size_t j = 0; j < soft.knotCount(); ++j)
+                        step.displacement[j] = soft.position[j] - start.positions[j];
                     lastStep_ = std::move(step);
                 } else {
                     lastStep_.reset();
                 }
             }
-            previous_ = std::move(soft);
+            // The next run's hint is the tensions its start had under the law it was relaxed for:
+            // a run that did not move its start leaves that law to the one before it.
+            previous_ = unmoved && start.before ? std::move(start.before) : std::move(soft);
             return;
         }
         // Refine: the material's stiffness in one run, so the backend keeps its own continuation
@@ -365,6 +384,7 @@ void LiveRelaxer::runJob(Job& job) {
             publish(std::move(report));
         };
         previous_.reset();
+        previewCancelled_ = false;
         lastStep_.reset();
         const RelaxResult r = refineRun(job.system, o);
         state.steps = r.steps;
@@ -380,6 +400,7 @@ void LiveRelaxer::runJob(Job& job) {
         previous_ = std::move(job.system);
     } catch (const UserError& e) {
         previous_.reset();
+        previewCancelled_ = false;
         refined_.reset();
         state.error = e.what();
         finish("error", job.system.position);

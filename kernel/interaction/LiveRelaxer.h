@@ -140,6 +140,9 @@ class LiveRelaxer {
     /// for a refine) with the positions it ended at, whose law gives the next preview's tension
     /// hint (startTensions below). Empty before the first run and after an error.
     std::optional<MassSpringSystem> previous_;
+    /// Worker thread only: the last run was a preview superseded by a newer one before its end
+    /// was published; previous_ holds where it stopped, which the next preview goes on from.
+    bool previewCancelled_ = false;
     /// Worker thread only: the system of the last refine that converged, at its equilibrium.
     std::optional<MassSpringSystem> refined_;
     /// A refine's start after an edit of the refined shape: `system`'s positions become that
@@ -164,6 +167,17 @@ class LiveRelaxer {
     /// and returns true. `restChange` gets next's rest lengths minus previous's whenever `next` is a
     /// rest-length edit of the shape `previous` ended at (else it is left empty).
     bool extrapolate(const MassSpringSystem& previous, MassSpringSystem& next, std::vector<double>& restChange);
+    /// How a preview starts (worker thread only): `soft`'s positions carried on from a cancelled
+    /// preview, new rows continued, a repeated edit extrapolated (LastStep); the hint from the
+    /// system before. previous_ moves into `before`.
+    struct PreviewStart {
+        std::vector<double> hint;       ///< RelaxOptions::startTensions; empty = none
+        std::vector<Vec3> positions;    ///< soft's before the extrapolation: a step's origin
+        std::vector<double> restChange; ///< extrapolate()'s
+        bool showAtOnce = false;        ///< carried or continued: published before iterating
+        std::optional<MassSpringSystem> before;
+    };
+    PreviewStart preparePreviewStart(MassSpringSystem& soft);
     /// Worker thread only: extrapolate()'s residual test, kept for the topology of its last use
     /// (a drag's steps share it; only the law is updated): the force field, the bars and fixed
     /// flags it was built for, and scratch.

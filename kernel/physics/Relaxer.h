@@ -79,6 +79,12 @@ struct RelaxOptions {
     /// at its boundary can choose another way down for a slack piece (docs/performance.md). Others
     /// ignore it. It changes how the equilibrium is found, never what counts as converged.
     bool focusAfterHint = false;
+    /// Fast backend: a cancel during the iterations seeded with startTensions waits until one of
+    /// them has reached a state good enough to keep (at most those few iterations). The studio's
+    /// preview after an edit: a drag as fast as the frames cancels each run within its first
+    /// iteration, which on a slack net is not yet such a state, and the shape on screen would not
+    /// move until the drag stopped. Others ignore it.
+    bool hintBeforeCancel = false;
 };
 
 struct RelaxResult {

@@ -321,6 +321,49 @@ TEST_CASE("live relaxer: new rows are shown where the rows above lead before the
     CHECK(published.back().steps > 0);
 }
 
+TEST_CASE("live relaxer: a preview superseded by the next edit hands on the shape it reached, which "
+          "the next one shows at once and goes on from", "[live]") {
+    Document doc;
+    buildLargeSlackSheet(doc, 2000); // its first settle takes hundreds of iterations
+    std::mutex mutex;
+    std::vector<LiveState> published;
+    LiveRelaxOptions options;
+    options.backend = "fast";
+    options.onPublish = [&](const LiveState& state) {
+        std::lock_guard lock(mutex);
+        published.push_back(state);
+    };
+    LiveRelaxer live(options);
+    live.preview(doc.compiled().system, 1);
+    // Once the first settle has shown a shape, an edit comes (as in a drag, the document still has
+    // the shape it had: the settle has not ended).
+    const auto start = Clock::now();
+    for (bool shown = false; !shown && secondsSince(start) < 30;) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        const auto state = live.latest();
+        shown = state && state->running && state->steps > 0;
+    }
+    doc.execute(SetBarLengthCommand{doc.sculpture().pieces.begin()->first, std::nullopt, std::nullopt,
+                                    0.1 * 1.001},
+                true);
+    const MassSpringSystem& edited = doc.compiled().system;
+    live.preview(edited, 2);
+    REQUIRE(live.waitIdle(60));
+    std::lock_guard lock(mutex);
+    const auto first = std::find_if(published.begin(), published.end(),
+                                    [](const LiveState& state) { return state.generation == 2; });
+    REQUIRE(first != published.end());
+    // The first settle was cancelled, never published its end, and the next run starts where it
+    // stopped, far from the Eq. 2 geometry the document gave it, and shows that before iterating.
+    CHECK(std::none_of(published.begin(), first, [](const LiveState& s) { return !s.running; }));
+    CHECK(first->running);
+    CHECK(first->steps == 0);
+    REQUIRE(first->positions.size() == edited.knotCount());
+    CHECK(maxDistance(first->positions, edited.position) > 0.1);
+    CHECK(published.back().generation == 2);
+    CHECK(published.back().converged);
+}
+
 TEST_CASE("live relaxer: a preview publishes every iteration's shape with a zero publish interval, only the "
           "end with a long one", "[live]") {
     Scene scene;

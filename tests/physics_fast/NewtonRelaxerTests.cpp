@@ -10,6 +10,7 @@
 #include "physics/ReferenceNets.h"
 #include "physics/Relaxer.h"
 #include "physics/fast/NewtonRelaxer.h"
+#include "physics/fast/NewtonRun.h"
 
 #include "physics/EigenDense.h"
 #include <catch2/catch.hpp>
@@ -345,6 +346,38 @@ TEST_CASE("fast: a start hinted with the tensions before a bar-length edit conve
     FastRelaxer other;
     REQUIRE(other.relax(again, options).converged);
     CHECK(sameBits(again.position, hinted.position));
+}
+
+TEST_CASE("fast: a cancel in the hinted iterations waits for a state worth keeping when "
+          "hintBeforeCancel is set (the studio's drag as fast as the frames)",
+          "[fast]") {
+    FastRelaxer relaxer;
+    const LengthenedTube edit = lengthenedTube(2e3, relaxer);
+    const std::vector<double> hint = tensionsBefore(edit.before.system, edit.carried);
+    const std::atomic<bool> cancelled{true}; // raised before the run starts
+    RelaxOptions options;
+    options.startTensions = hint;
+    options.cancel = &cancelled;
+    const double start = residual(edit.carried);
+
+    // A plain cancel stops before the first iteration: the start comes back as it was.
+    MassSpringSystem plain = edit.carried;
+    const RelaxResult stopped = relaxer.relax(plain, options);
+    CHECK(stopped.stopReason == "cancelled");
+    CHECK(stopped.steps == 0);
+    CHECK(sameBits(plain.position, edit.carried.position));
+
+    // With hintBeforeCancel the hinted iterations go on until their state is kept: the run ends
+    // nearer the equilibrium than it started, after at most kHintIterations.
+    options.hintBeforeCancel = true;
+    MassSpringSystem hinted = edit.carried;
+    const RelaxResult kept = relaxer.relax(hinted, options);
+    INFO("start residual " << start << ", after " << kept.steps << " iterations " << kept.residual);
+    CHECK(kept.steps >= 1);
+    CHECK(kept.steps <= newton::kHintIterations);
+    CHECK(maxDistance(hinted.position, edit.carried.position) > 1e-4);
+    CHECK(kept.residual == residual(hinted));
+    CHECK(kept.residual < 0.1 * start);
 }
 
 TEST_CASE("fast: a hinted start's single-precision steps reach the double ones' equilibrium, "

@@ -26,6 +26,12 @@
 //   --connect                            instead of the drags, the slack sheet's connection: it
 //                                        settles hanging from its top rail alone, then its last
 //                                        row is connected to the lower rail (one edit)
+//   --continuous                         instead of the drags, one as fast as the frames: a bar-
+//                                        length step of +0.1 % at every frame (30 a second) for
+//                                        --steps frames, each restarting the preview while the
+//                                        last may still run, the shape on screen taken as the
+//                                        studio takes it; how often it moved, and how long the
+//                                        last step took to settle (with --only rows, a row a frame)
 //   --on-screen                          keeps every published shape and prints, for the drags
 //                                        that keep the knots, how far the shape on screen one to
 //                                        four frames after each edit is from the settled one (the
@@ -44,6 +50,7 @@
 #include <cstring>
 #include <functional>
 #include <mutex>
+#include <thread>
 #include <string>
 #include <vector>
 
@@ -260,6 +267,53 @@ void runDrag(const char* name, Document& doc, LiveRelaxer& live, PublicationLog&
     printShownDistances(distances);
 }
 
+constexpr double kVisibleMotion = 1e-4; ///< m: a knot moved by more than this is a new shape
+
+/// A drag as fast as the frames: one step per frame (as a mouse moving a few pixels a frame gives),
+/// each restarting the preview, the screen taking the current edit's latest shape at every frame
+/// as the studio's frame loop does (App::syncLive). Counts the frames, during the drag, that showed
+/// a new shape of the edit then current (a knot moved by more than kVisibleMotion), and times the
+/// settling after the last step.
+void runContinuousDrag(Document& doc, LiveRelaxer& live, std::uint64_t& generation, int steps,
+                       const std::function<Command(int)>& commandAt) {
+    const auto t0 = Clock::now();
+    std::uint64_t seen = 0;
+    int framesWithNewShape = 0, frames = 0;
+    double lastEdit = 0;
+    std::string ended;
+    for (int frame = 0;; ++frame) {
+        std::this_thread::sleep_until(t0 + std::chrono::duration_cast<Clock::duration>(
+                                               std::chrono::duration<double>(frame * kFrameSeconds)));
+        const auto state = live.latest();
+        const bool current = state && state->generation == generation;
+        if (current && state->sequence != seen) {
+            seen = state->sequence;
+            const std::vector<Vec3>& shown = doc.compiled().system.position;
+            if (state->positions.size() == shown.size()) {
+                // a shape of the step made at the frame before, visibly moved
+                if (frame <= steps && largestDistance(shown, state->positions) > kVisibleMotion)
+                    ++framesWithNewShape;
+                doc.adoptPositions(state->positions, false);
+            }
+        }
+        if (frame >= steps && current && !state->running) {
+            ended = state->stopReason;
+            break;
+        }
+        if (frame < steps) {
+            doc.execute(commandAt(frame + 1), /*merge=*/true);
+            live.preview(doc.compiled().system, ++generation);
+            lastEdit = secondsSince(t0);
+            frames = frame + 1;
+        }
+    }
+    doc.endGesture();
+    std::printf("continuous  %d steps, one a frame: %d of the %d frames after them showed a new shape "
+                "of the step then current (a knot moved by more than 0.1 mm); the last step settled "
+                "(%s) %.2f s after it, to the frame\n",
+                frames, framesWithNewShape, frames, ended.c_str(), secondsSince(t0) - lastEdit);
+}
+
 /// The sheet's last row connected to its lower rail ("bottom") after it has settled hanging
 /// from the top one: one edit that swings the whole sheet into its U.
 void runConnect(Document& doc, LiveRelaxer& live, PublicationLog& log,
@@ -286,7 +340,7 @@ int main(int argc, char** argv) {
     keepFreedMemoryForReuse(); // as the studio does
     int knots = 20000, steps = 20;
     std::string only;
-    bool sheet = false, connect = false, onScreen = false;
+    bool sheet = false, connect = false, onScreen = false, continuous = false;
     LiveRelaxOptions options; // the studio's
     options.threads = threadsBesideTheFrames();
     for (int i = 1; i < argc; ++i) {
@@ -301,6 +355,8 @@ int main(int argc, char** argv) {
             sheet = true;
         else if (arg == "--connect")
             sheet = connect = true;
+        else if (arg == "--continuous")
+            continuous = true;
         else if (arg == "--on-screen")
             onScreen = true;
         else if (arg == "--double-steps")
@@ -315,7 +371,7 @@ int main(int argc, char** argv) {
         else {
             std::fprintf(stderr, "usage: %s [--knots N] [--steps N] [--backend NAME] "
                                  "[--preview-scale S] [--threads N] [--sheet] [--double-steps] "
-                                 "[--only bar|rows] [--connect] [--on-screen]\n",
+                                 "[--only bar|rows] [--connect] [--continuous] [--on-screen]\n",
                          argv[0]);
             return 2;
         }
@@ -362,11 +418,19 @@ int main(int argc, char** argv) {
             return 0;
         }
         const double bar = start.bar.at(0);
+        const int rows = doc.sculpture().pieces.at(piece).rows;
+        if (continuous) {
+            runContinuousDrag(doc, live, generation, steps, [&](int step) -> Command {
+                if (only == "rows")
+                    return SetRowsCommand{piece, rows + step};
+                return SetBarLengthCommand{piece, std::nullopt, std::nullopt, bar * (1 + 0.001 * step)};
+            });
+            return 0;
+        }
         if (only != "rows")
             runDrag("bar length", doc, live, log, generation, steps, [&](int step) -> Command {
                 return SetBarLengthCommand{piece, std::nullopt, std::nullopt, bar * (1 + 0.005 * step)};
             });
-        const int rows = doc.sculpture().pieces.at(piece).rows;
         if (only != "bar")
             runDrag("rows", doc, live, log, generation, only == "rows" ? steps : std::max(1, steps / 2),
                     [&](int step) -> Command { return SetRowsCommand{piece, rows + step}; });

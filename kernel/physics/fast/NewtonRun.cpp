@@ -420,12 +420,9 @@ void NewtonRun::hintedStart(double tolerance) {
     const double startResidual = residual_;
     bent_ = false;
     thirdOrder_ = false; // a hinted start's bent steps stop at the second order
-    for (std::size_t b = 0; b < system_.barCount(); ++b) {
+    for (std::size_t b = 0; b < system_.barCount(); ++b)
         tension_[b] = hint[b];
-        kCompression_[b] = hint[b] > 0 ? std::max(system_.kCompression[b], system_.kTension[b])
-                                       : system_.kCompression[b];
-    }
-    field_.setCompressionStiffness(kCompression_);
+    setHintedLaw();
     residual_ = evaluate(x_);
     double best = residual_;
     shift_ = kFinalMinShift;
@@ -439,7 +436,8 @@ void NewtonRun::hintedStart(double tolerance) {
         return factored;
     };
     const std::int64_t first = steps_;
-    while (steps_ - first < kHintIterations && !(residual_ < tolerance) && !stopRequested()) {
+    while (steps_ - first < kHintIterations && !(residual_ < tolerance) &&
+           !hintStopRequested(steps_ > first, startResidual)) {
         report(false);
         assemble(true, false);
         bool factored = factorizeShifted();
@@ -490,8 +488,38 @@ void NewtonRun::hintedStart(double tolerance) {
     }
 }
 
-bool NewtonRun::stopRequested() {
-    if (options_.cancel && options_.cancel->load(std::memory_order_relaxed))
+/// The hinted start's law: a bar the hint has taut keeps its tension stiffness when it is
+/// shorter than its rest length.
+void NewtonRun::setHintedLaw() {
+    const std::span<const double> hint = options_.startTensions;
+    for (std::size_t b = 0; b < system_.barCount(); ++b)
+        kCompression_[b] = hint[b] > 0 ? std::max(system_.kCompression[b], system_.kTension[b])
+                                       : system_.kCompression[b];
+    field_.setCompressionStiffness(kCompression_);
+}
+
+/// Whether the hinted iterations stop before the next one. With hintBeforeCancel a cancel ends
+/// them only once one has been taken (`moved`) and its state would be kept (hintedStart's rule:
+/// under the material's law below the start's residual and kHintKeepResidual); checking that
+/// costs two force passes, only while a cancel waits.
+bool NewtonRun::hintStopRequested(bool moved, double startResidual) {
+    if (!options_.hintBeforeCancel)
+        return stopRequested();
+    if (stopRequested(false))
+        return true;
+    if (!moved || !(options_.cancel && options_.cancel->load(std::memory_order_relaxed)))
+        return false;
+    compressionBlend_ = -1;
+    setCompression(0.0);
+    const double material = evaluate(x_);
+    compressionBlend_ = -1; // hintedStart's end sets the material's law again
+    setHintedLaw();
+    residual_ = evaluate(x_);
+    return material < startResidual && material < kHintKeepResidual && stopRequested();
+}
+
+bool NewtonRun::stopRequested(bool cancellable) {
+    if (cancellable && options_.cancel && options_.cancel->load(std::memory_order_relaxed))
         stopReason_ = "cancelled";
     else if (secondsSince(start_) >= options_.maxSeconds)
         stopReason_ = "time limit";

@@ -248,6 +248,8 @@ class NewtonRun {
     double meritOf(const std::vector<Vec3>& at);
     double takeStep(double alpha, bool mixed);
     void hintedStart(double tolerance);
+    void setHintedLaw();
+    bool hintStopRequested(bool moved, double startResidual);
     bool isWarm(bool hinted) const;
     double axialToLoad() const;
     double softStageScale(double axialToLoad) const;
@@ -258,7 +260,9 @@ class NewtonRun {
     double expandStep(double slope, double fullChange);
     void adaptDamping(double alpha, double slope, double fullChange);
     RelaxResult finish(double tolerance);
-    bool stopRequested();
+    /// A cancel, the time or the step limit ends the run (stopReason_ says which); a cancel only
+    /// when `cancellable`.
+    bool stopRequested(bool cancellable = true);
     bool relaxRegion(double tolerance, bool mixed);
     void keepIfBest();
     void report(bool force);
