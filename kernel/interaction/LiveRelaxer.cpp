@@ -166,9 +166,11 @@ LiveRelaxer::PreviewStart LiveRelaxer::preparePreviewStart(MassSpringSystem& sof
     PreviewStart start;
     // A preview cancelled by this edit never reached the screen or the document: this one goes on
     // from where it stopped, not from the shape before it (a drag as fast as the frames cancels
-    // every run within its first iteration or two).
-    const std::size_t carried =
-        previous_ && previewCancelled_ ? carryMatchedPositions(*previous_, soft) : 0;
+    // every run within its first iteration or two), where its knots are still the same ones.
+    const std::size_t carried = previous_ && previewCancelled_ &&
+                                        sameKnotsWhereMatched(*previous_, soft)
+                                    ? carryMatchedPositions(*previous_, soft)
+                                    : 0;
     previewCancelled_ = false;
     // Rows added below go on with the shape above them, and the tensions the start shape had
     // before the edit make the fast path's predictor. The same edit once more (a drag's next

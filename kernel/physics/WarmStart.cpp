@@ -45,7 +45,45 @@ std::unordered_map<std::uint64_t, std::uint32_t> knotsByKey(const MassSpringSyst
     return knots;
 }
 
+/// Per piece, one more than the largest column (or row) of its knots.
+std::unordered_map<std::uint32_t, int> extentOf(const MassSpringSystem& system, bool columns) {
+    std::unordered_map<std::uint32_t, int> extent;
+    for (const KnotRef& ref : system.refs) {
+        int& e = extent[ref.piece.value];
+        e = std::max(e, (columns ? ref.column : ref.row) + 1);
+    }
+    return extent;
+}
+
+/// Pieces tied to a rail below: their last row held.
+std::unordered_set<std::uint32_t> tiedPieces(const MassSpringSystem& system) {
+    const auto rows = extentOf(system, false);
+    std::unordered_set<std::uint32_t> tied;
+    for (std::size_t j = 0; j < system.knotCount(); ++j)
+        for (std::uint32_t i = system.refStart[j]; system.fixed[j] && i < system.refStart[j + 1];
+             ++i)
+            if (system.refs[i].row > 0 && system.refs[i].row + 1 == rows.at(system.refs[i].piece.value))
+                tied.insert(system.refs[i].piece.value);
+    return tied;
+}
+
 } // namespace
+
+bool sameKnotsWhereMatched(const MassSpringSystem& previous, const MassSpringSystem& next) {
+    if (previous.refStart == next.refStart && previous.refs == next.refs)
+        return true;
+    const auto oldColumns = extentOf(previous, true), newColumns = extentOf(next, true);
+    const auto oldRows = extentOf(previous, false), newRows = extentOf(next, false);
+    const auto tied = tiedPieces(next);
+    for (const auto& [piece, columns] : newColumns) {
+        const auto old = oldColumns.find(piece);
+        if (old == oldColumns.end())
+            continue;
+        if (old->second != columns || (tied.contains(piece) && oldRows.at(piece) != newRows.at(piece)))
+            return false;
+    }
+    return true;
+}
 
 std::size_t carryMatchedPositions(const MassSpringSystem& previous, MassSpringSystem& next) {
     const std::unordered_map<std::uint64_t, std::uint32_t> oldKnot = knotsByKey(previous);
@@ -67,25 +105,12 @@ std::size_t continueNewRows(const MassSpringSystem& previous, MassSpringSystem& 
     // The same knots (a drag that keeps the topology): none is new.
     if (previous.refStart == next.refStart && previous.refs == next.refs)
         return 0;
-    // Columns per piece (the largest column + 1) in both systems: only a piece whose column count
-    // is the same has rows to go on from.
-    auto columnsOf = [](const MassSpringSystem& system) {
-        std::unordered_map<std::uint32_t, int> columns;
-        for (const KnotRef& ref : system.refs)
-            columns[ref.piece.value] = std::max(columns[ref.piece.value], ref.column + 1);
-        return columns;
-    };
-    const auto oldColumns = columnsOf(previous), newColumns = columnsOf(next);
+    // Columns per piece in both systems: only a piece whose column count is the same has rows to
+    // go on from.
+    const auto oldColumns = extentOf(previous, true), newColumns = extentOf(next, true);
     // Pieces tied to a rail below (their last row held) are left as they are: the document's warm
     // start spreads their rows between the rows they kept and the rail (Compiler.h).
-    std::unordered_map<std::uint32_t, int> lastRow;
-    for (const KnotRef& ref : next.refs)
-        lastRow[ref.piece.value] = std::max(lastRow[ref.piece.value], ref.row);
-    std::unordered_set<std::uint32_t> tied;
-    for (std::size_t j = 0; j < next.knotCount(); ++j)
-        for (std::uint32_t i = next.refStart[j]; next.fixed[j] && i < next.refStart[j + 1]; ++i)
-            if (next.refs[i].row > 0 && next.refs[i].row == lastRow[next.refs[i].piece.value])
-                tied.insert(next.refs[i].piece.value);
+    const std::unordered_set<std::uint32_t> tied = tiedPieces(next);
     std::unordered_map<std::uint64_t, std::uint32_t> oldKnot, newKnot;
     for (std::size_t j = 0; j < previous.knotCount(); ++j) {
         std::uint64_t key = 0;

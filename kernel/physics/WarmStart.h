@@ -23,6 +23,12 @@ namespace netsculpt {
 /// under an older law, carried across the edits since (the studio's refine starts from its last
 /// refined shape, not from the soft preview's). Returns how many were carried.
 std::size_t carryMatchedPositions(const MassSpringSystem& previous, MassSpringSystem& next);
+/// Whether each knot of `next` that `previous` also had (the same first (piece, row, column)) is
+/// the same knot of the net, so that a shape of `previous` carried to it (carryMatchedPositions)
+/// is where it hangs: false when a piece in both has another column count (columns and gears
+/// respace a row), or when a piece tied to a rail below has another row count (the document's
+/// warm start spreads its rows anew between the rows it kept and the rail).
+bool sameKnotsWhereMatched(const MassSpringSystem& previous, const MassSpringSystem& next);
 std::size_t continueNewRows(const MassSpringSystem& previous, MassSpringSystem& next);
 /// The warm-start hint for relaxing `next` after `previous` (RelaxOptions::startTensions): for
 /// every bar of `next` that joins the same two (piece, row, column) knots as a bar of

@@ -282,6 +282,29 @@ TEST_CASE("live relaxer: the hint holds the tensions before the edit, and new ro
     CHECK(newBars == 2 * 2 * 24);
 }
 
+TEST_CASE("live relaxer: a shape is carried on to the same knots only: rows added to a hanging piece "
+          "keep them, more columns or rows of a tied piece do not", "[live]") {
+    Scene scene;
+    const MassSpringSystem base = scene.doc.compiled().system;
+    auto after = [&](const Command& command) {
+        scene.doc.execute(command);
+        MassSpringSystem next = scene.doc.compiled().system;
+        scene.doc.undo();
+        return next;
+    };
+    CHECK(sameKnotsWhereMatched(base, after(SetBarLengthCommand{scene.net, std::nullopt,
+                                                                std::nullopt, 0.4})));
+    CHECK(sameKnotsWhereMatched(base, after(SetRowsCommand{scene.net, 8})));
+    CHECK(sameKnotsWhereMatched(base, after(SetRowsCommand{scene.net, 4})));
+    CHECK_FALSE(sameKnotsWhereMatched(base, after(SetColumnsCommand{scene.net, 30})));
+    // Tied to the ring below: its rows are spread anew between the crown and the ring.
+    scene.doc.execute(ConnectToRailCommand{scene.net, scene.ring, 0, false});
+    const MassSpringSystem tied = scene.doc.compiled().system;
+    CHECK(sameKnotsWhereMatched(tied, after(SetBarLengthCommand{scene.net, std::nullopt,
+                                                                std::nullopt, 0.4})));
+    CHECK_FALSE(sameKnotsWhereMatched(tied, after(SetRowsCommand{scene.net, 8})));
+}
+
 TEST_CASE("live relaxer: new rows are shown where the rows above lead before the first iteration", "[live]") {
     Scene scene;
     scene.doc.execute(SetRowsCommand{scene.net, 12});
