@@ -305,18 +305,35 @@ TEST_CASE("live relaxer: a shape is carried on to the same knots only: rows adde
     CHECK_FALSE(sameKnotsWhereMatched(tied, after(SetRowsCommand{scene.net, 8})));
 }
 
+namespace {
+
+/// Every state a fast-backend LiveRelaxer made with options() publishes, in order.
+struct PublishedStates {
+    std::mutex mutex;
+    std::vector<LiveState> states;
+    LiveRelaxOptions options() {
+        LiveRelaxOptions o;
+        o.backend = "fast";
+        o.onPublish = [this](const LiveState& state) {
+            std::lock_guard lock(mutex);
+            states.push_back(state);
+        };
+        return o;
+    }
+    /// The first state of `generation`, or states.end(); the caller holds the mutex.
+    std::vector<LiveState>::const_iterator firstOf(std::uint64_t generation) const {
+        return std::find_if(states.begin(), states.end(),
+                            [&](const LiveState& state) { return state.generation == generation; });
+    }
+};
+
+} // namespace
+
 TEST_CASE("live relaxer: new rows are shown where the rows above lead before the first iteration", "[live]") {
     Scene scene;
     scene.doc.execute(SetRowsCommand{scene.net, 12});
-    std::mutex mutex;
-    std::vector<LiveState> published;
-    LiveRelaxOptions options;
-    options.backend = "fast";
-    options.onPublish = [&](const LiveState& state) {
-        std::lock_guard lock(mutex);
-        published.push_back(state);
-    };
-    LiveRelaxer live(options);
+    PublishedStates log;
+    LiveRelaxer live(log.options());
     live.preview(scene.doc.compiled().system, 1);
     REQUIRE(live.waitIdle(60));
     REQUIRE(live.latest()->converged);
@@ -332,9 +349,9 @@ TEST_CASE("live relaxer: new rows are shown where the rows above lead before the
     REQUIRE(expected.position != grown.position);
     live.preview(grown, 2);
     REQUIRE(live.waitIdle(60));
-    std::lock_guard lock(mutex);
-    const auto first = std::find_if(published.begin(), published.end(),
-                                    [](const LiveState& state) { return state.generation == 2; });
+    std::lock_guard lock(log.mutex);
+    const std::vector<LiveState>& published = log.states;
+    const auto first = log.firstOf(2);
     REQUIRE(first != published.end());
     CHECK(first->running);
     CHECK(first->steps == 0);
@@ -348,15 +365,8 @@ TEST_CASE("live relaxer: a preview superseded by the next edit hands on the shap
           "the next one shows at once and goes on from", "[live]") {
     Document doc;
     buildLargeSlackSheet(doc, 2000); // its first settle takes hundreds of iterations
-    std::mutex mutex;
-    std::vector<LiveState> published;
-    LiveRelaxOptions options;
-    options.backend = "fast";
-    options.onPublish = [&](const LiveState& state) {
-        std::lock_guard lock(mutex);
-        published.push_back(state);
-    };
-    LiveRelaxer live(options);
+    PublishedStates log;
+    LiveRelaxer live(log.options());
     live.preview(doc.compiled().system, 1);
     // Once the first settle has shown a shape, an edit comes (as in a drag, the document still has
     // the shape it had: the settle has not ended).
@@ -372,9 +382,9 @@ TEST_CASE("live relaxer: a preview superseded by the next edit hands on the shap
     const MassSpringSystem& edited = doc.compiled().system;
     live.preview(edited, 2);
     REQUIRE(live.waitIdle(60));
-    std::lock_guard lock(mutex);
-    const auto first = std::find_if(published.begin(), published.end(),
-                                    [](const LiveState& state) { return state.generation == 2; });
+    std::lock_guard lock(log.mutex);
+    const std::vector<LiveState>& published = log.states;
+    const auto first = log.firstOf(2);
     REQUIRE(first != published.end());
     // The first settle was cancelled, never published its end, and the next run starts where it
     // stopped, far from the Eq. 2 geometry the document gave it, and shows that before iterating.
