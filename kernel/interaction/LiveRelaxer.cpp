@@ -385,6 +385,11 @@ void LiveRelaxer::runJob(Job& job) {
             report.seconds = seconds();
             publish(std::move(report));
         };
+        // A refine cut short by an edit publishes no shape: the document keeps the preview's, and
+        // the next preview goes on as if there had been no refine: its hint is the law that shape
+        // was relaxed under, not the material's, and a drag's next step is still predicted.
+        std::optional<MassSpringSystem> beforeRefine = std::move(previous_);
+        std::optional<LastStep> stepBeforeRefine = std::move(lastStep_);
         previous_.reset();
         previewCancelled_ = false;
         lastStep_.reset();
@@ -392,14 +397,20 @@ void LiveRelaxer::runJob(Job& job) {
         state.steps = r.steps;
         state.residual = r.residual;
         state.stiffnessScale = 1;
-        if (r.stopReason == "cancelled" || superseded()) {
+        const bool cancelled = r.stopReason == "cancelled" || superseded();
+        if (cancelled) {
             if (!hasPending()) finish("cancelled", job.system.position);
         } else {
             state.converged = r.converged;
             finish(r.stopReason, job.system.position);
             if (r.converged) refined_ = job.system;
         }
-        previous_ = std::move(job.system);
+        if (cancelled && hasPending() && beforeRefine) {
+            previous_ = std::move(beforeRefine);
+            lastStep_ = std::move(stepBeforeRefine);
+        } else {
+            previous_ = std::move(job.system);
+        }
     } catch (const UserError& e) {
         previous_.reset();
         previewCancelled_ = false;

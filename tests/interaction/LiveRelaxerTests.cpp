@@ -397,6 +397,42 @@ TEST_CASE("live relaxer: a preview superseded by the next edit hands on the shap
     CHECK(published.back().converged);
 }
 
+TEST_CASE("live relaxer: a refine cut short by the next edit of a drag leaves the next preview as it "
+          "would have been without the refine", "[live]") {
+    // The studio refines once a preview has settled; a drag that goes on cancels that refine. The
+    // preview after it runs the same way, to the same bits, as one after no refine at all.
+    auto drag = [](bool refineBetween) {
+        Document doc;
+        buildLargeSlackSheet(doc, 2000); // its refine takes about ten iterations, 3 ms each
+        const PieceId sheet = doc.sculpture().pieces.begin()->first;
+        LiveRelaxOptions options;
+        options.backend = "fast";
+        options.publishInterval = 1e-3; // a refine reports its progress every 3 ms
+        LiveRelaxer live(options);
+        previewAndShow(doc, live, 1);
+        doc.execute(SetBarLengthCommand{sheet, std::nullopt, std::nullopt, 0.1 * 1.002}, true);
+        previewAndShow(doc, live, 2);
+        bool caughtRunning = false;
+        if (refineBetween) {
+            live.refine(doc.compiled().system, 3);
+            const auto start = Clock::now();
+            while (!caughtRunning && secondsSince(start) < 30) {
+                std::this_thread::sleep_for(std::chrono::milliseconds(1));
+                const auto state = live.latest();
+                caughtRunning = state->generation == 3 && state->running && state->steps > 0;
+            }
+        }
+        doc.execute(SetBarLengthCommand{sheet, std::nullopt, std::nullopt, 0.1 * 1.004}, true);
+        const auto state = previewAndShow(doc, live, 4);
+        CHECK(state->converged);
+        return std::make_pair(state->positions, caughtRunning);
+    };
+    const auto [plain, unused] = drag(false);
+    const auto [refined, caught] = drag(true);
+    REQUIRE(caught); // the refine was running when the edit came
+    CHECK(refined == plain);
+}
+
 TEST_CASE("live relaxer: a preview publishes every iteration's shape with a zero publish interval, only the "
           "end with a long one", "[live]") {
     Scene scene;

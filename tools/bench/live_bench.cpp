@@ -32,6 +32,9 @@
 //                                        last may still run, the shape on screen taken as the
 //                                        studio takes it; how often it moved, and how long the
 //                                        last step took to settle (with --only rows, a row a frame)
+//   --refine-gap S                       after each settled drag step a refine starts, as the
+//                                        studio's does, and the next edit comes S seconds later
+//                                        (a drag that pauses), cutting it short
 //   --on-screen                          keeps every published shape and prints, for the drags
 //                                        that keep the knots, how far the shape on screen one to
 //                                        four frames after each edit is from the settled one (the
@@ -220,13 +223,17 @@ void printShownDistances(const ShownDistances& d) {
                 "settled place, median (90%%) over %zu steps:", d.moved.size());
     for (int k = 1; k <= ShownDistances::kFrames; ++k)
         std::printf("%s k=%d %.2g (%.2g) mm", k == 1 ? "" : ",", k,
-                    1e3 * percentile(d.atFrame[k - 1], 0.5), 1e3 * percentile(d.atFrame[k - 1], 0.9));
+                    1e3 * percentile(d.atFrame[k - 1], 0.5),
+                    1e3 * percentile(d.atFrame[k - 1], 0.9));
     std::printf("; a step moves a knot by up to %.3g (%.3g) mm\n", 1e3 * percentile(d.moved, 0.5),
                 1e3 * percentile(d.moved, 0.9));
 }
 
+/// A drag of `steps` steps, each settled before the next; with refineGap >= 0 a refine starts
+/// after each settled step and the next edit comes that many seconds later.
 void runDrag(const char* name, Document& doc, LiveRelaxer& live, PublicationLog& log,
-             std::uint64_t& generation, int steps, const std::function<Command(int)>& commandAt) {
+             std::uint64_t& generation, int steps, double refineGap,
+             const std::function<Command(int)>& commandAt) {
     std::vector<double> edit, relax, total, iterations;
     Publications shown;
     ShownDistances distances;
@@ -237,6 +244,10 @@ void runDrag(const char* name, Document& doc, LiveRelaxer& live, PublicationLog&
         doc.execute(commandAt(step), /*merge=*/true);
         const double editSeconds = secondsSince(t0);
         const StepTiming timing = previewNow(doc, live, ++generation);
+        if (refineGap >= 0) { // the studio's refine after a settled preview, cut short by the drag
+            live.refine(doc.compiled().system, ++generation);
+            std::this_thread::sleep_for(std::chrono::duration<double>(refineGap));
+        }
         shown.add(log.of(generation));
         distances.add(log.takeShapes(generation), editSeconds, before,
                       doc.compiled().system.position);
@@ -282,8 +293,8 @@ void runContinuousDrag(Document& doc, LiveRelaxer& live, std::uint64_t& generati
     double lastEdit = 0;
     std::string ended;
     for (int frame = 0;; ++frame) {
-        std::this_thread::sleep_until(t0 + std::chrono::duration_cast<Clock::duration>(
-                                               std::chrono::duration<double>(frame * kFrameSeconds)));
+        const std::chrono::duration<double> sinceStart(frame * kFrameSeconds);
+        std::this_thread::sleep_until(t0 + std::chrono::duration_cast<Clock::duration>(sinceStart));
         const auto state = live.latest();
         const bool current = state && state->generation == generation;
         if (current && state->sequence != seen) {
@@ -308,9 +319,9 @@ void runContinuousDrag(Document& doc, LiveRelaxer& live, std::uint64_t& generati
         }
     }
     doc.endGesture();
-    std::printf("continuous  %d steps, one a frame: %d of the %d frames after them showed a new shape "
-                "of the step then current (a knot moved by more than 0.1 mm); the last step settled "
-                "(%s) %.2f s after it, to the frame\n",
+    std::printf("continuous  %d steps, one a frame: %d of the %d frames after them showed a new "
+                "shape of the step then current (a knot moved by more than 0.1 mm); the last step "
+                "settled (%s) %.2f s after it, to the frame\n",
                 frames, framesWithNewShape, frames, ended.c_str(), secondsSince(t0) - lastEdit);
 }
 
@@ -341,6 +352,7 @@ int main(int argc, char** argv) {
     int knots = 20000, steps = 20;
     std::string only;
     bool sheet = false, connect = false, onScreen = false, continuous = false;
+    double refineGap = -1;
     LiveRelaxOptions options; // the studio's
     options.threads = threadsBesideTheFrames();
     for (int i = 1; i < argc; ++i) {
@@ -355,6 +367,8 @@ int main(int argc, char** argv) {
             sheet = true;
         else if (arg == "--connect")
             sheet = connect = true;
+        else if (arg == "--refine-gap" && i + 1 < argc)
+            refineGap = std::atof(argv[++i]);
         else if (arg == "--continuous")
             continuous = true;
         else if (arg == "--on-screen")
@@ -371,7 +385,8 @@ int main(int argc, char** argv) {
         else {
             std::fprintf(stderr, "usage: %s [--knots N] [--steps N] [--backend NAME] "
                                  "[--preview-scale S] [--threads N] [--sheet] [--double-steps] "
-                                 "[--only bar|rows] [--connect] [--continuous] [--on-screen]\n",
+                                 "[--only bar|rows] [--connect] [--continuous] [--on-screen] "
+                                 "[--refine-gap S]\n",
                          argv[0]);
             return 2;
         }
@@ -423,16 +438,20 @@ int main(int argc, char** argv) {
             runContinuousDrag(doc, live, generation, steps, [&](int step) -> Command {
                 if (only == "rows")
                     return SetRowsCommand{piece, rows + step};
-                return SetBarLengthCommand{piece, std::nullopt, std::nullopt, bar * (1 + 0.001 * step)};
+                return SetBarLengthCommand{piece, std::nullopt, std::nullopt,
+                                           bar * (1 + 0.001 * step)};
             });
             return 0;
         }
         if (only != "rows")
-            runDrag("bar length", doc, live, log, generation, steps, [&](int step) -> Command {
-                return SetBarLengthCommand{piece, std::nullopt, std::nullopt, bar * (1 + 0.005 * step)};
-            });
+            runDrag("bar length", doc, live, log, generation, steps, refineGap,
+                    [&](int step) -> Command {
+                        return SetBarLengthCommand{piece, std::nullopt, std::nullopt,
+                                                   bar * (1 + 0.005 * step)};
+                    });
         if (only != "bar")
-            runDrag("rows", doc, live, log, generation, only == "rows" ? steps : std::max(1, steps / 2),
+            runDrag("rows", doc, live, log, generation,
+                    only == "rows" ? steps : std::max(1, steps / 2), refineGap,
                     [&](int step) -> Command { return SetRowsCommand{piece, rows + step}; });
     } catch (const std::exception& e) {
         std::fprintf(stderr, "netsculpt-bench-live: %s\n", e.what());
