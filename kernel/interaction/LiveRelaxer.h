@@ -7,7 +7,10 @@
 // progress reports carry positions, each published (about every publishInterval). Each call
 // cancels the run in progress (RelaxOptions::cancel) and starts again from the positions it is
 // given, so every edit restarts from the current shape (a warm start: the fast path then needs a
-// few Newton iterations). refine() relaxes at
+// few Newton iterations); when the run cut short was a preview of the same knots, from where it
+// stopped, which the new run shows at once (a drag as fast as the frames cuts every run short;
+// its hinted iterations first reach a state worth keeping: RelaxOptions::hintBeforeCancel).
+// refine() relaxes at
 // the material's stiffness in one run (the backend's own stiffness continuation) down to the
 // refine tolerance, publishing its residual as it converges and the positions at the end.
 //
@@ -138,7 +141,9 @@ class LiveRelaxer {
     std::unique_ptr<Relaxer> relaxer_; ///< used by the worker thread only
     /// Worker thread only: the system of the last run (the preview's soft copy, or the material
     /// for a refine) with the positions it ended at, whose law gives the next preview's tension
-    /// hint (startTensions below). Empty before the first run and after an error.
+    /// hint (startTensions below). Empty before the first run and after an error. Runs cut short
+    /// by a newer one: a preview that did not move its start leaves the system before it, and a
+    /// refine the preview's before it (the shape the document still shows).
     std::optional<MassSpringSystem> previous_;
     /// Worker thread only: the last run was a preview superseded by a newer one before its end
     /// was published; previous_ holds where it stopped, which the next preview goes on from.
