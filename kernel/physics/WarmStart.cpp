@@ -45,6 +45,9 @@ std::unordered_map<std::uint64_t, std::uint32_t> knotsByKey(const MassSpringSyst
     return knots;
 }
 
+/// m: a held knot this close to where it was is held at the same place.
+constexpr double kSamePlace = 1e-9;
+
 /// Per piece, one more than the largest column (or row) of its knots.
 std::unordered_map<std::uint32_t, int> extentOf(const MassSpringSystem& system, bool columns) {
     std::unordered_map<std::uint32_t, int> extent;
@@ -70,6 +73,16 @@ std::unordered_set<std::uint32_t> tiedPieces(const MassSpringSystem& system) {
 } // namespace
 
 bool sameKnotsWhereMatched(const MassSpringSystem& previous, const MassSpringSystem& next) {
+    const std::unordered_map<std::uint64_t, std::uint32_t> oldKnot = knotsByKey(previous);
+    for (std::size_t j = 0; j < next.knotCount(); ++j) {
+        std::uint64_t key = 0;
+        if (!next.fixed[j] || !knotKey(next, j, key))
+            continue;
+        const auto at = oldKnot.find(key);
+        if (at != oldKnot.end() && previous.fixed[at->second] &&
+            distance(previous.position[at->second], next.position[j]) > kSamePlace)
+            return false; // held elsewhere: another sculpture, or its rail moved
+    }
     if (previous.refStart == next.refStart && previous.refs == next.refs)
         return true;
     const auto oldColumns = extentOf(previous, true), newColumns = extentOf(next, true);

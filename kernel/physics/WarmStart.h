@@ -26,8 +26,10 @@ std::size_t carryMatchedPositions(const MassSpringSystem& previous, MassSpringSy
 /// Whether each knot of `next` that `previous` also had (the same first (piece, row, column)) is
 /// the same knot of the net, so that a shape of `previous` carried to it (carryMatchedPositions)
 /// is where it hangs: false when a piece in both has another column count (columns and gears
-/// respace a row), or when a piece tied to a rail below has another row count (the document's
-/// warm start spreads its rows anew between the rows it kept and the rail).
+/// respace a row), when a piece tied to a rail below has another row count (the document's
+/// warm start spreads its rows anew between the rows it kept and the rail), or when a knot held
+/// in both is held somewhere else (another sculpture whose pieces have the same numbers, or a
+/// rail moved).
 bool sameKnotsWhereMatched(const MassSpringSystem& previous, const MassSpringSystem& next);
 std::size_t continueNewRows(const MassSpringSystem& previous, MassSpringSystem& next);
 /// The warm-start hint for relaxing `next` after `previous` (RelaxOptions::startTensions): for

@@ -283,7 +283,7 @@ TEST_CASE("live relaxer: the hint holds the tensions before the edit, and new ro
 }
 
 TEST_CASE("live relaxer: a shape is carried on to the same knots only: rows added to a hanging piece "
-          "keep them, more columns or rows of a tied piece do not", "[live]") {
+          "keep them; more columns, rows of a tied piece or another sculpture do not", "[live]") {
     Scene scene;
     const MassSpringSystem base = scene.doc.compiled().system;
     auto after = [&](const Command& command) {
@@ -303,6 +303,17 @@ TEST_CASE("live relaxer: a shape is carried on to the same knots only: rows adde
     CHECK(sameKnotsWhereMatched(tied, after(SetBarLengthCommand{scene.net, std::nullopt,
                                                                 std::nullopt, 0.4})));
     CHECK_FALSE(sameKnotsWhereMatched(tied, after(SetRowsCommand{scene.net, 8})));
+    // Another sculpture whose piece has the same number, rows and columns, on another rail.
+    Document other;
+    const RailId wide = other.execute(AddRailCommand{"wide", polygonRail(24, 2.5, 3.0)}).rails.front();
+    AttachToRailArgs args;
+    args.rail = wide;
+    args.columns = 24;
+    args.rows = 6;
+    args.bar = 0.35;
+    const PieceId otherNet = other.execute(AttachToRailCommand{args}).pieces.front();
+    REQUIRE(otherNet == scene.net);
+    CHECK_FALSE(sameKnotsWhereMatched(base, other.compiled().system));
 }
 
 namespace {
