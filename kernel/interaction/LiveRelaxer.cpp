@@ -243,6 +243,8 @@ bool LiveRelaxer::extrapolate(const MassSpringSystem& previous, MassSpringSystem
 }
 
 std::vector<double> LiveRelaxer::refinedStart(MassSpringSystem& system) const {
+    if (!heldAtTheSamePlaces(*refined_, system))
+        return {}; // another sculpture: nothing of its refined shape applies
     MassSpringSystem start = system;
     carryMatchedPositions(*refined_, start);
     continueNewRows(*refined_, start);

@@ -152,7 +152,8 @@ class LiveRelaxer {
     std::optional<MassSpringSystem> refined_;
     /// A refine's start after an edit of the refined shape: `system`'s positions become that
     /// shape carried across the edit (new rows where the rows above lead), and the hint returned
-    /// is the tensions it had; empty (and `system` unchanged) when too few bars match.
+    /// is the tensions it had; empty (and `system` unchanged) when too few bars match or a knot
+    /// held in both is held elsewhere (another sculpture).
     std::vector<double> refinedStart(MassSpringSystem& system) const;
     /// A refine of `system` (its positions: the preview's shape), after an edit of a refined shape
     /// tried from that shape first (kRefinedStartSteps in LiveRelaxer.cpp); the result of the run

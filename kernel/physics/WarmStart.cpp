@@ -72,7 +72,7 @@ std::unordered_set<std::uint32_t> tiedPieces(const MassSpringSystem& system) {
 
 } // namespace
 
-bool sameKnotsWhereMatched(const MassSpringSystem& previous, const MassSpringSystem& next) {
+bool heldAtTheSamePlaces(const MassSpringSystem& previous, const MassSpringSystem& next) {
     const std::unordered_map<std::uint64_t, std::uint32_t> oldKnot = knotsByKey(previous);
     for (std::size_t j = 0; j < next.knotCount(); ++j) {
         std::uint64_t key = 0;
@@ -81,8 +81,14 @@ bool sameKnotsWhereMatched(const MassSpringSystem& previous, const MassSpringSys
         const auto at = oldKnot.find(key);
         if (at != oldKnot.end() && previous.fixed[at->second] &&
             distance(previous.position[at->second], next.position[j]) > kSamePlace)
-            return false; // held elsewhere: another sculpture, or its rail moved
+            return false;
     }
+    return true;
+}
+
+bool sameKnotsWhereMatched(const MassSpringSystem& previous, const MassSpringSystem& next) {
+    if (!heldAtTheSamePlaces(previous, next))
+        return false;
     if (previous.refStart == next.refStart && previous.refs == next.refs)
         return true;
     const auto oldColumns = extentOf(previous, true), newColumns = extentOf(next, true);

@@ -31,6 +31,9 @@ std::size_t carryMatchedPositions(const MassSpringSystem& previous, MassSpringSy
 /// in both is held somewhere else (another sculpture whose pieces have the same numbers, or a
 /// rail moved).
 bool sameKnotsWhereMatched(const MassSpringSystem& previous, const MassSpringSystem& next);
+/// Whether every knot held in both systems (matched as above) is held at the same place: false
+/// for another sculpture whose pieces have the same numbers, or after a rail moved.
+bool heldAtTheSamePlaces(const MassSpringSystem& previous, const MassSpringSystem& next);
 std::size_t continueNewRows(const MassSpringSystem& previous, MassSpringSystem& next);
 /// The warm-start hint for relaxing `next` after `previous` (RelaxOptions::startTensions): for
 /// every bar of `next` that joins the same two (piece, row, column) knots as a bar of

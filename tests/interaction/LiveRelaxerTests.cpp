@@ -314,6 +314,8 @@ TEST_CASE("live relaxer: a shape is carried on to the same knots only: rows adde
     const PieceId otherNet = other.execute(AttachToRailCommand{args}).pieces.front();
     REQUIRE(otherNet == scene.net);
     CHECK_FALSE(sameKnotsWhereMatched(base, other.compiled().system));
+    CHECK_FALSE(heldAtTheSamePlaces(base, other.compiled().system));
+    CHECK(heldAtTheSamePlaces(base, after(SetRowsCommand{scene.net, 8})));
 }
 
 namespace {
