@@ -337,6 +337,7 @@ void App::syncLive() {
         // A relaxed shape (an opened snapshot, an undo back to one) is already the equilibrium
         // at the material's stiffness: a soft preview would only sag it and refine it back.
         if (liveEnabled_ && !doc.isRelaxed()) live_->preview(doc.compiled().system, shownVersion_);
+        else live_->cancel(); // a run for the state before would go on for nothing
     }
     if (const auto state = live_->latest(); state && state->sequence != seenSequence_) {
         seenSequence_ = state->sequence;
