@@ -354,10 +354,11 @@ void App::syncLive() {
         }
     }
     // Once the soft preview has settled, go on to the material's stiffness (the report's forces
-    // are only right there); Newton gets there in a few steps from the preview's shape.
+    // are only right there); Newton gets there in a few steps from the preview's shape. Not while
+    // a handle is held: the drag's next step would cut the refine short.
     if (autoRefine_ && liveEnabled_ && liveState_ && !liveState_->running && liveState_->converged &&
         liveState_->phase == LivePhase::Preview && liveState_->generation == shownVersion_ &&
-        refinedVersion_ != shownVersion_) {
+        refinedVersion_ != shownVersion_ && !interaction_->dragged()) {
         refinedVersion_ = shownVersion_;
         live_->refine(doc.compiled().system, shownVersion_);
     }
