@@ -65,8 +65,9 @@ std::unordered_set<std::uint32_t> tiedPieces(const MassSpringSystem& system) {
     for (std::size_t j = 0; j < system.knotCount(); ++j)
         for (std::uint32_t i = system.refStart[j]; system.fixed[j] && i < system.refStart[j + 1];
              ++i)
-            if (system.refs[i].row > 0 && system.refs[i].row + 1 == rows.at(system.refs[i].piece.value))
-                tied.insert(system.refs[i].piece.value);
+            if (const KnotRef& ref = system.refs[i];
+                ref.row > 0 && ref.row + 1 == rows.at(ref.piece.value))
+                tied.insert(ref.piece.value);
     return tied;
 }
 
@@ -98,7 +99,8 @@ bool sameKnotsWhereMatched(const MassSpringSystem& previous, const MassSpringSys
         const auto old = oldColumns.find(piece);
         if (old == oldColumns.end())
             continue;
-        if (old->second != columns || (tied.contains(piece) && oldRows.at(piece) != newRows.at(piece)))
+        const bool rowsChanged = oldRows.at(piece) != newRows.at(piece);
+        if (old->second != columns || (tied.contains(piece) && rowsChanged))
             return false;
     }
     return true;

@@ -282,8 +282,9 @@ TEST_CASE("live relaxer: the hint holds the tensions before the edit, and new ro
     CHECK(newBars == 2 * 2 * 24);
 }
 
-TEST_CASE("live relaxer: a shape is carried on to the same knots only: rows added to a hanging piece "
-          "keep them; more columns, rows of a tied piece or another sculpture do not", "[live]") {
+TEST_CASE("live relaxer: a shape is carried on to the same knots only: rows added to a hanging "
+          "piece keep them; more columns, rows of a tied piece or another sculpture do not",
+          "[live]") {
     Scene scene;
     const MassSpringSystem base = scene.doc.compiled().system;
     auto after = [&](const Command& command) {
@@ -305,7 +306,8 @@ TEST_CASE("live relaxer: a shape is carried on to the same knots only: rows adde
     CHECK_FALSE(sameKnotsWhereMatched(tied, after(SetRowsCommand{scene.net, 8})));
     // Another sculpture whose piece has the same number, rows and columns, on another rail.
     Document other;
-    const RailId wide = other.execute(AddRailCommand{"wide", polygonRail(24, 2.5, 3.0)}).rails.front();
+    const RailId wide =
+        other.execute(AddRailCommand{"wide", polygonRail(24, 2.5, 3.0)}).rails.front();
     AttachToRailArgs args;
     args.rail = wide;
     args.columns = 24;
@@ -374,8 +376,8 @@ TEST_CASE("live relaxer: new rows are shown where the rows above lead before the
     CHECK(published.back().steps > 0);
 }
 
-TEST_CASE("live relaxer: a preview superseded by the next edit hands on the shape it reached, which "
-          "the next one shows at once and goes on from", "[live]") {
+TEST_CASE("live relaxer: a preview superseded by the next edit hands on the shape it reached, "
+          "which the next one shows at once and goes on from", "[live]") {
     Document doc;
     buildLargeSlackSheet(doc, 2000); // its first settle takes hundreds of iterations
     PublishedStates log;
@@ -389,9 +391,8 @@ TEST_CASE("live relaxer: a preview superseded by the next edit hands on the shap
         const auto state = live.latest();
         shown = state && state->running && state->steps > 0;
     }
-    doc.execute(SetBarLengthCommand{doc.sculpture().pieces.begin()->first, std::nullopt, std::nullopt,
-                                    0.1 * 1.001},
-                true);
+    const PieceId sheet = doc.sculpture().pieces.begin()->first;
+    doc.execute(SetBarLengthCommand{sheet, std::nullopt, std::nullopt, 0.1 * 1.001}, true);
     const MassSpringSystem& edited = doc.compiled().system;
     live.preview(edited, 2);
     REQUIRE(live.waitIdle(60));
@@ -410,8 +411,8 @@ TEST_CASE("live relaxer: a preview superseded by the next edit hands on the shap
     CHECK(published.back().converged);
 }
 
-TEST_CASE("live relaxer: a refine cut short by the next edit of a drag leaves the next preview as it "
-          "would have been without the refine", "[live]") {
+TEST_CASE("live relaxer: a refine cut short by the next edit of a drag leaves the next preview as "
+          "it would have been without the refine", "[live]") {
     // The studio refines once a preview has settled; a drag that goes on cancels that refine. The
     // preview after it runs the same way, to the same bits, as one after no refine at all.
     auto drag = [](bool refineBetween) {
