@@ -61,6 +61,7 @@ LiveRelaxer::~LiveRelaxer() {
         std::lock_guard lock(mutex_);
         quit_ = true;
         cancel_ = true;
+        cancelNow_ = true;
     }
     wake_.notify_all();
     worker_.join();
@@ -88,6 +89,7 @@ void LiveRelaxer::cancel() {
     std::lock_guard lock(mutex_);
     pending_.reset();
     cancel_ = true;
+    cancelNow_ = true; // nothing goes on from the run's state: its hinted steps need not finish
 }
 
 std::shared_ptr<const LiveState> LiveRelaxer::latest() const {
@@ -147,6 +149,7 @@ void LiveRelaxer::workerLoop() {
             job = std::move(*pending_);
             pending_.reset();
             cancel_ = false;
+            cancelNow_ = false;
             busy_ = true;
         }
         applyNiceness();
@@ -296,6 +299,7 @@ void LiveRelaxer::runJob(Job& job) {
         if (!relaxer_) relaxer_ = makeRelaxer(options_.backend);
         RelaxOptions o;
         o.cancel = &cancel_;
+        o.cancelNow = &cancelNow_;
         o.threads = options_.threads;
         if (job.phase == LivePhase::Preview) {
             // The soft copy in one run whose progress reports, with their positions, are

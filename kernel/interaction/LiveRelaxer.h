@@ -133,6 +133,7 @@ class LiveRelaxer {
     bool busy_ = false;
     bool quit_ = false;
     std::atomic<bool> cancel_{false};
+    std::atomic<bool> cancelNow_{false}; ///< cancel() and quitting: RelaxOptions::cancelNow
     std::atomic<int> niceness_{0}; ///< requested by setNiceness
     int appliedNiceness_ = 0;      ///< worker thread only
     int startNice_ = 0;            ///< worker thread only: its nice value when it started

@@ -85,6 +85,9 @@ struct RelaxOptions {
     /// iteration, which on a slack net is not yet such a state, and the shape on screen would not
     /// move until the drag stopped. Others ignore it.
     bool hintBeforeCancel = false;
+    /// With hintBeforeCancel: when this reads true too, a cancel does not wait (the caller stops
+    /// for good: no newer edit will go on from the state). Null = every cancel waits.
+    const std::atomic<bool>* cancelNow = nullptr;
 };
 
 struct RelaxResult {

@@ -378,6 +378,13 @@ TEST_CASE("fast: a cancel in the hinted iterations waits for a state worth keepi
     CHECK(maxDistance(hinted.position, edit.carried.position) > 1e-4);
     CHECK(kept.residual == residual(hinted));
     CHECK(kept.residual < 0.1 * start);
+
+    // A cancel for good (cancelNow) does not wait.
+    const std::atomic<bool> now{true};
+    options.cancelNow = &now;
+    MassSpringSystem stoppedNow = edit.carried;
+    CHECK(relaxer.relax(stoppedNow, options).steps == 0);
+    CHECK(sameBits(stoppedNow.position, edit.carried.position));
 }
 
 TEST_CASE("fast: a hinted start's single-precision steps reach the double ones' equilibrium, "

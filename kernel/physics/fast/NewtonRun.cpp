@@ -500,10 +500,11 @@ void NewtonRun::setHintedLaw() {
 
 /// Whether the hinted iterations stop before the next one. With hintBeforeCancel a cancel ends
 /// them only once one has been taken (`moved`) and its state would be kept (hintedStart's rule:
-/// under the material's law below the start's residual and kHintKeepResidual); checking that
-/// costs two force passes, only while a cancel waits.
+/// under the material's law below the start's residual and kHintKeepResidual), unless cancelNow
+/// reads true; checking that costs two force passes, only while a cancel waits.
 bool NewtonRun::hintStopRequested(bool moved, double startResidual) {
-    if (!options_.hintBeforeCancel)
+    if (!options_.hintBeforeCancel ||
+        (options_.cancelNow && options_.cancelNow->load(std::memory_order_relaxed)))
         return stopRequested();
     if (stopRequested(false))
         return true;
