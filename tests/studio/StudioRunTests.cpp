@@ -1,6 +1,7 @@
 // netsculpt-studio itself, under Xvfb: it replays tests/data/studio/add_rows.events on the demo,
 // then the test reads the journal the studio wrote (the expected commands, one undo step) and the
-// screenshot (the net is drawn, in the piece colours, where the fixed camera projects its knots).
+// screenshot (the net is drawn, in the piece colours, where the fixed camera projects its knots);
+// hold_rows.events checks when the studio refines.
 
 #include "commands/Journal.h"
 #include "interaction/DemoScenes.h"
@@ -186,6 +187,31 @@ TEST_CASE("studio: without relaxation the net is drawn exactly where the camera 
     for (int y = 90; y < 180; ++y)
         for (int x = 330; x < 420; ++x) stray += netColoured(image.at(x, y), colours);
     CHECK(stray == 0);
+}
+
+TEST_CASE("studio: no refine starts while a handle is held; it starts once the handle is released") {
+    // hold_rows.events drags piece 2's last row down two rows and holds the button: the preview
+    // settles at its soft stiffness and stays there (a refine would be cut short by the drag's
+    // next step). Released, the studio refines. --settle waits, at the last frame, for the runs.
+    const fs::path events = fs::path(NETSCULPT_SOURCE_DIR) / "tests/data/studio/hold_rows.events";
+    const fs::path held = outputFolder("hold");
+    const std::string heldLog = runUnderXvfb(
+        held, "--demo --play \"" + events.string() + "\" --exit-after-frames 260 --settle 60");
+    CHECK_THAT(heldLog, Catch::Matchers::Contains("relaxation converged") &&
+                            Catch::Matchers::Contains("at stiffness x0.01"));
+    std::ifstream in(events);
+    std::stringstream text;
+    text << in.rdbuf() << "release left\nframe 2\n";
+    const fs::path released = outputFolder("release");
+    std::ofstream(released / "release.events") << text.str();
+    const std::string releasedLog =
+        runUnderXvfb(released, "--demo --play \"" + (released / "release.events").string() +
+                                   "\" --exit-after-frames 260 --settle 60");
+    CHECK_THAT(releasedLog, Catch::Matchers::Contains("relaxation converged") &&
+                                Catch::Matchers::Contains("at stiffness x1\n"));
+    // Both journals hold the same drag: two rows more on piece 2.
+    CHECK(Document::open(held / "out.netj").sculpture().piece(PieceId(2)).rows == 10);
+    CHECK(Document::open(released / "out.netj").sculpture().piece(PieceId(2)).rows == 10);
 }
 
 TEST_CASE("studio: a Lua script's commands become the session's journal") {
