@@ -45,6 +45,11 @@ std::unordered_map<std::uint64_t, std::uint32_t> knotsByKey(const MassSpringSyst
     return knots;
 }
 
+/// The same knots, in the same order: knot j of one is knot j of the other.
+bool sameKnots(const MassSpringSystem& previous, const MassSpringSystem& next) {
+    return previous.refStart == next.refStart && previous.refs == next.refs;
+}
+
 /// m: a held knot this close to where it was is held at the same place.
 constexpr double kSamePlace = 1e-9;
 
@@ -74,6 +79,14 @@ std::unordered_set<std::uint32_t> tiedPieces(const MassSpringSystem& system) {
 } // namespace
 
 bool heldAtTheSamePlaces(const MassSpringSystem& previous, const MassSpringSystem& next) {
+    if (sameKnots(previous, next)) { // knot j is knot j: no lookup (a drag that keeps the knots)
+        for (std::size_t j = 0; j < next.knotCount(); ++j)
+            if (std::uint64_t key = 0; next.fixed[j] && previous.fixed[j] &&
+                                       knotKey(next, j, key) &&
+                                       distance(previous.position[j], next.position[j]) > kSamePlace)
+                return false;
+        return true;
+    }
     const std::unordered_map<std::uint64_t, std::uint32_t> oldKnot = knotsByKey(previous);
     for (std::size_t j = 0; j < next.knotCount(); ++j) {
         std::uint64_t key = 0;
@@ -90,7 +103,7 @@ bool heldAtTheSamePlaces(const MassSpringSystem& previous, const MassSpringSyste
 bool sameKnotsWhereMatched(const MassSpringSystem& previous, const MassSpringSystem& next) {
     if (!heldAtTheSamePlaces(previous, next))
         return false;
-    if (previous.refStart == next.refStart && previous.refs == next.refs)
+    if (sameKnots(previous, next))
         return true;
     const auto oldColumns = extentOf(previous, true), newColumns = extentOf(next, true);
     const auto oldRows = extentOf(previous, false), newRows = extentOf(next, false);
@@ -107,6 +120,15 @@ bool sameKnotsWhereMatched(const MassSpringSystem& previous, const MassSpringSys
 }
 
 std::size_t carryMatchedPositions(const MassSpringSystem& previous, MassSpringSystem& next) {
+    if (sameKnots(previous, next)) { // no lookup: knot j is knot j
+        std::size_t carried = 0;
+        for (std::size_t j = 0; j < next.knotCount(); ++j)
+            if (std::uint64_t key = 0; !next.fixed[j] && knotKey(next, j, key)) {
+                next.position[j] = previous.position[j];
+                ++carried;
+            }
+        return carried;
+    }
     const std::unordered_map<std::uint64_t, std::uint32_t> oldKnot = knotsByKey(previous);
     std::size_t carried = 0;
     for (std::size_t j = 0; j < next.knotCount(); ++j) {
@@ -124,7 +146,7 @@ std::size_t carryMatchedPositions(const MassSpringSystem& previous, MassSpringSy
 
 std::size_t continueNewRows(const MassSpringSystem& previous, MassSpringSystem& next) {
     // The same knots (a drag that keeps the topology): none is new.
-    if (previous.refStart == next.refStart && previous.refs == next.refs)
+    if (sameKnots(previous, next))
         return 0;
     // Columns per piece in both systems: only a piece whose column count is the same has rows to
     // go on from.

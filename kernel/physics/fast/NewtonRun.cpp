@@ -364,6 +364,12 @@ double movedUnits(const Vec3& before, const Vec3& after) {
     return std::max({std::abs(move.x), std::abs(move.y), std::abs(move.z)}) / unit;
 }
 
+/// hintedStart's rule: its state is kept when its residual under the material's law is below the
+/// start's and kHintKeepResidual.
+bool hintWorthKeeping(double materialResidual, double startResidual) {
+    return materialResidual < startResidual && materialResidual < kHintKeepResidual;
+}
+
 } // namespace
 
 /// x += alpha step; in the mixed stage the tension estimates follow the linearised lengths.
@@ -476,16 +482,20 @@ void NewtonRun::hintedStart(double tolerance) {
     }
     single_ = false;
     stats_.hintIterations = steps_ - first;
-    // Back to the material's law.
-    compressionBlend_ = -1;
-    setCompression(0.0);
-    residual_ = evaluate(x_);
-    if (residual_ < startResidual && residual_ < kHintKeepResidual) {
+    residual_ = materialLawResidual();
+    if (hintWorthKeeping(residual_, startResidual)) {
         hintKeptAt_ = steps_;
     } else {
         x_ = start;
         residual_ = evaluate(x_);
     }
+}
+
+/// Back to the material's law; the residual under it at x_.
+double NewtonRun::materialLawResidual() {
+    compressionBlend_ = -1;
+    setCompression(0.0);
+    return evaluate(x_);
 }
 
 /// The hinted start's law: a bar the hint has taut keeps its tension stiffness when it is
@@ -499,9 +509,8 @@ void NewtonRun::setHintedLaw() {
 }
 
 /// Whether the hinted iterations stop before the next one. With hintBeforeCancel a cancel ends
-/// them only once one has been taken (`moved`) and its state would be kept (hintedStart's rule:
-/// under the material's law below the start's residual and kHintKeepResidual), unless cancelNow
-/// reads true; checking that costs two force passes, only while a cancel waits.
+/// them only once one has been taken (`moved`) and its state would be kept (hintWorthKeeping),
+/// unless cancelNow reads true; checking that costs two force passes, only while a cancel waits.
 bool NewtonRun::hintStopRequested(bool moved, double startResidual) {
     if (!options_.hintBeforeCancel ||
         (options_.cancelNow && options_.cancelNow->load(std::memory_order_relaxed)))
@@ -510,13 +519,11 @@ bool NewtonRun::hintStopRequested(bool moved, double startResidual) {
         return true;
     if (!moved || !(options_.cancel && options_.cancel->load(std::memory_order_relaxed)))
         return false;
-    compressionBlend_ = -1;
-    setCompression(0.0);
-    const double material = evaluate(x_);
+    const double material = materialLawResidual();
     compressionBlend_ = -1; // hintedStart's end sets the material's law again
     setHintedLaw();
     residual_ = evaluate(x_);
-    return material < startResidual && material < kHintKeepResidual && stopRequested();
+    return hintWorthKeeping(material, startResidual) && stopRequested();
 }
 
 bool NewtonRun::stopRequested(bool cancellable) {

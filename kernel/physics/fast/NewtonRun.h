@@ -249,6 +249,7 @@ class NewtonRun {
     double takeStep(double alpha, bool mixed);
     void hintedStart(double tolerance);
     void setHintedLaw();
+    double materialLawResidual();
     bool hintStopRequested(bool moved, double startResidual);
     bool isWarm(bool hinted) const;
     double axialToLoad() const;
