@@ -81,9 +81,9 @@ std::unordered_set<std::uint32_t> tiedPieces(const MassSpringSystem& system) {
 bool heldAtTheSamePlaces(const MassSpringSystem& previous, const MassSpringSystem& next) {
     if (sameKnots(previous, next)) { // knot j is knot j: no lookup (a drag that keeps the knots)
         for (std::size_t j = 0; j < next.knotCount(); ++j)
-            if (std::uint64_t key = 0; next.fixed[j] && previous.fixed[j] &&
-                                       knotKey(next, j, key) &&
-                                       distance(previous.position[j], next.position[j]) > kSamePlace)
+            if (std::uint64_t key = 0;
+                next.fixed[j] && previous.fixed[j] && knotKey(next, j, key) &&
+                distance(previous.position[j], next.position[j]) > kSamePlace)
                 return false;
         return true;
     }
