@@ -279,150 +279,177 @@ RelaxResult LiveRelaxer::refineRun(MassSpringSystem& system, const RelaxOptions&
     return relaxer_->relax(system, options);
 }
 
+double LiveRelaxer::JobRun::seconds() const {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+void LiveRelaxer::finish(JobRun& run, const std::string& reason, std::vector<Vec3> positions) {
+    run.state.running = false;
+    run.state.stopReason = reason;
+    run.state.positions = std::move(positions);
+    run.state.seconds = run.seconds();
+    publish(run.state);
+}
+
+RelaxOptions LiveRelaxer::jobOptions() {
+    RelaxOptions o;
+    o.cancel = &cancel_;
+    o.cancelNow = &cancelNow_;
+    o.threads = options_.threads;
+    o.maxSeconds = options_.maxSeconds;
+    return o;
+}
+
 void LiveRelaxer::runJob(Job& job) {
-    const auto start = Clock::now();
-    auto seconds = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
-    LiveState state;
-    state.generation = job.generation;
-    state.phase = job.phase;
-    state.running = true;
-    auto finish = [&](const std::string& reason, std::vector<Vec3> positions) {
-        state.running = false;
-        state.stopReason = reason;
-        state.positions = std::move(positions);
-        state.seconds = seconds();
-        publish(state);
-    };
+    JobRun run{job, Clock::now(), {}};
+    run.state.generation = job.generation;
+    run.state.phase = job.phase;
+    run.state.running = true;
     try {
         // One relaxer for the worker's lifetime: a backend may keep per-topology analysis between
         // calls (the fast backend does), which a drag that keeps the topology reuses.
         if (!relaxer_) relaxer_ = makeRelaxer(options_.backend);
-        RelaxOptions o;
-        o.cancel = &cancel_;
-        o.cancelNow = &cancelNow_;
-        o.threads = options_.threads;
-        if (job.phase == LivePhase::Preview) {
-            // The soft copy in one run whose progress reports, with their positions, are
-            // published: the net visibly settles. RK4's soft copy needs no continuation of its
-            // own (its schedule is a way to such a stiffness); the fast path's continuation is
-            // how it starts from a cold shape, and a warm one skips it.
-            const double scale = previewScale(job.system, options_.previewStiffnessScale);
-            MassSpringSystem soft = job.system;
-            scaleStiffness(soft, scale);
-            PreviewStart start = preparePreviewStart(soft);
-            o.startTensions = start.hint;
-            o.tolerance = options_.previewTolerance;
-            o.continuation = relaxer_->name() == "fast";
-            o.singlePrecisionSteps = options_.singlePrecisionSteps;
-            o.focusAfterHint = true; // a slack net's folds settle on their own after a drag
-            o.hintBeforeCancel = true; // a drag as fast as the frames still moves the net
-            o.maxSeconds = options_.maxSeconds;
-            // Every report reaches the callback, which publishes when waiting for the next one
-            // (about as far off as the last one was) would keep a shape on screen longer than the
-            // publish interval: with a Newton iteration of 25 ms that is every iteration, not
-            // every second one (50 ms) as an interval test alone would give.
-            o.progressInterval = 0;
-            double lastShown = 0, lastReport = 0;
-            state.stiffnessScale = scale;
-            if (start.showAtOnce) {
-                // New rows are shown at once where the rows above lead them: the caller has them
-                // at the document's Eq. 2 offsets, and the first iteration comes after the new
-                // topology's analysis (tens of ms at 20,000 knots). So is a carried shape.
-                LiveState shown = state;
-                shown.seconds = lastShown = seconds();
-                shown.positions = soft.position;
-                publish(std::move(shown));
-            }
-            o.progress = [&](const RelaxProgress& p) {
-                if (p.positions.size() != soft.knotCount() || p.steps == 0) // the start: shown already
-                    return;
-                const double now = seconds();
-                const double period = now - lastReport;
-                lastReport = now;
-                if (now - lastShown + period < options_.publishInterval)
-                    return;
-                lastShown = now;
-                LiveState shown = state;
-                shown.stiffnessScale = scale * p.stiffnessScale; // the fast path may start softer
-                shown.residual = p.residual;
-                shown.steps = p.steps;
-                shown.seconds = seconds();
-                shown.positions.assign(p.positions.begin(), p.positions.end());
-                publish(std::move(shown));
-            };
-            const RelaxResult r = relaxer_->relax(soft, o);
-            state.steps = r.steps;
-            state.residual = r.residual;
-            bool unmoved = false; // cancelled before it moved its start
-            if (r.stopReason == "cancelled" || superseded()) {
-                if (!hasPending()) finish("cancelled", soft.position); // else a newer run follows
-                previewCancelled_ = hasPending();
-                unmoved = soft.position == start.positions;
-                lastStep_.reset();
-            } else {
-                state.converged = r.converged;
-                finish(r.stopReason, soft.position);
-                if (r.converged && !start.restChange.empty()) {
-                    LastStep step{std::vector<Vec3>(soft.knotCount()), std::move(start.restChange)};
-                    for (std::size_t j = 0; j < soft.knotCount(); ++j)
-                        step.displacement[j] = soft.position[j] - start.positions[j];
-                    lastStep_ = std::move(step);
-                } else {
-                    lastStep_.reset();
-                }
-            }
-            // The next run's hint is the tensions its start had under the law it was relaxed for:
-            // a run that did not move its start leaves that law to the one before it.
-            previous_ = unmoved && start.before ? std::move(start.before) : std::move(soft);
-            return;
-        }
-        // Refine: the material's stiffness in one run, so the backend keeps its own continuation
-        // (restarting it in pieces can lead a slack net to another equilibrium); its progress
-        // reports are published without positions (the shape shown stays until the end).
-        o.tolerance = options_.refineTolerance;
-        o.maxSeconds = options_.maxSeconds;
-        o.continuation = true;
-        o.progressInterval = 3 * options_.publishInterval;
-        o.progress = [&](const RelaxProgress& p) {
-            LiveState report = state;
-            report.residual = p.residual;
-            report.stiffnessScale = p.stiffnessScale;
-            report.steps = p.steps;
-            report.seconds = seconds();
-            publish(std::move(report));
-        };
-        // A refine cut short by an edit publishes no shape: the document keeps the preview's, and
-        // the next preview goes on as if there had been no refine: its hint is the law that shape
-        // was relaxed under, not the material's, and a drag's next step is still predicted.
-        std::optional<MassSpringSystem> beforeRefine = std::move(previous_);
-        std::optional<LastStep> stepBeforeRefine = std::move(lastStep_);
-        previous_.reset();
-        previewCancelled_ = false;
-        lastStep_.reset();
-        const RelaxResult r = refineRun(job.system, o);
-        state.steps = r.steps;
-        state.residual = r.residual;
-        state.stiffnessScale = 1;
-        const bool cancelled = r.stopReason == "cancelled" || superseded();
-        if (cancelled) {
-            if (!hasPending()) finish("cancelled", job.system.position);
-        } else {
-            state.converged = r.converged;
-            finish(r.stopReason, job.system.position);
-            if (r.converged) refined_ = job.system;
-        }
-        if (cancelled && hasPending() && beforeRefine) {
-            previous_ = std::move(beforeRefine);
-            lastStep_ = std::move(stepBeforeRefine);
-        } else {
-            previous_ = std::move(job.system);
-        }
+        if (job.phase == LivePhase::Preview)
+            runPreview(run);
+        else
+            runRefine(run);
     } catch (const UserError& e) {
         previous_.reset();
         previewCancelled_ = false;
         refined_.reset();
-        state.error = e.what();
-        finish("error", job.system.position);
+        run.state.error = e.what();
+        finish(run, "error", job.system.position);
+    }
+}
+
+// The soft copy in one run whose progress reports, with their positions, are published: the net
+// visibly settles. RK4's soft copy needs no continuation of its own (its schedule is a way to such
+// a stiffness); the fast path's continuation is how it starts from a cold shape, and a warm one
+// skips it.
+void LiveRelaxer::runPreview(JobRun& run) {
+    const double scale = previewScale(run.job.system, options_.previewStiffnessScale);
+    MassSpringSystem soft = run.job.system;
+    scaleStiffness(soft, scale);
+    PreviewStart start = preparePreviewStart(soft);
+    RelaxOptions o = jobOptions();
+    o.startTensions = start.hint;
+    o.tolerance = options_.previewTolerance;
+    o.continuation = relaxer_->name() == "fast";
+    o.singlePrecisionSteps = options_.singlePrecisionSteps;
+    o.focusAfterHint = true; // a slack net's folds settle on their own after a drag
+    o.hintBeforeCancel = true; // a drag as fast as the frames still moves the net
+    run.state.stiffnessScale = scale;
+    double lastShown = 0;
+    if (start.showAtOnce) {
+        // New rows are shown at once where the rows above lead them: the caller has them at the
+        // document's Eq. 2 offsets, and the first iteration comes after the new topology's
+        // analysis (tens of ms at 20,000 knots). So is a carried shape.
+        LiveState shown = run.state;
+        shown.seconds = lastShown = run.seconds();
+        shown.positions = soft.position;
+        publish(std::move(shown));
+    }
+    publishPreviewProgress(run, o, soft.knotCount(), scale, lastShown);
+    const RelaxResult r = relaxer_->relax(soft, o);
+    run.state.steps = r.steps;
+    run.state.residual = r.residual;
+    bool unmoved = false; // cancelled before it moved its start
+    if (r.stopReason == "cancelled" || superseded()) {
+        if (!hasPending()) finish(run, "cancelled", soft.position); // else a newer run follows
+        previewCancelled_ = hasPending();
+        unmoved = soft.position == start.positions;
+        lastStep_.reset();
+    } else {
+        run.state.converged = r.converged;
+        finish(run, r.stopReason, soft.position);
+        rememberStep(r.converged, start, soft);
+    }
+    // The next run's hint is the tensions its start had under the law it was relaxed for: a run
+    // that did not move its start leaves that law to the one before it.
+    previous_ = unmoved && start.before ? std::move(start.before) : std::move(soft);
+}
+
+// Every report reaches the callback, which publishes when waiting for the next one (about as far
+// off as the last one was) would keep a shape on screen longer than the publish interval: with a
+// Newton iteration of 25 ms that is every iteration, not every second one (50 ms) as an interval
+// test alone would give.
+void LiveRelaxer::publishPreviewProgress(JobRun& run, RelaxOptions& o, std::size_t knots,
+                                         double scale, double lastShown) {
+    o.progressInterval = 0;
+    o.progress = [this, &run, knots, scale, lastShown,
+                  lastReport = 0.0](const RelaxProgress& p) mutable {
+        if (p.positions.size() != knots || p.steps == 0) // the start: shown already
+            return;
+        const double now = run.seconds();
+        const double period = now - lastReport;
+        lastReport = now;
+        if (now - lastShown + period < options_.publishInterval)
+            return;
+        lastShown = now;
+        LiveState shown = run.state;
+        shown.stiffnessScale = scale * p.stiffnessScale; // the fast path may start softer
+        shown.residual = p.residual;
+        shown.steps = p.steps;
+        shown.seconds = run.seconds();
+        shown.positions.assign(p.positions.begin(), p.positions.end());
+        publish(std::move(shown));
+    };
+}
+
+// A converged preview after a rest-length edit is the step the next one may repeat (LastStep).
+void LiveRelaxer::rememberStep(bool converged, PreviewStart& start, const MassSpringSystem& soft) {
+    if (!converged || start.restChange.empty()) {
+        lastStep_.reset();
+        return;
+    }
+    LastStep step{std::vector<Vec3>(soft.knotCount()), std::move(start.restChange)};
+    for (std::size_t j = 0; j < soft.knotCount(); ++j)
+        step.displacement[j] = soft.position[j] - start.positions[j];
+    lastStep_ = std::move(step);
+}
+
+// The material's stiffness in one run, so the backend keeps its own continuation (restarting it
+// in pieces can lead a slack net to another equilibrium); its progress reports are published
+// without positions (the shape shown stays until the end).
+void LiveRelaxer::runRefine(JobRun& run) {
+    RelaxOptions o = jobOptions();
+    o.tolerance = options_.refineTolerance;
+    o.continuation = true;
+    o.progressInterval = 3 * options_.publishInterval;
+    o.progress = [&](const RelaxProgress& p) {
+        LiveState report = run.state;
+        report.residual = p.residual;
+        report.stiffnessScale = p.stiffnessScale;
+        report.steps = p.steps;
+        report.seconds = run.seconds();
+        publish(std::move(report));
+    };
+    // A refine cut short by an edit publishes no shape: the document keeps the preview's, and the
+    // next preview goes on as if there had been no refine: its hint is the law that shape was
+    // relaxed under, not the material's, and a drag's next step is still predicted.
+    std::optional<MassSpringSystem> beforeRefine = std::move(previous_);
+    std::optional<LastStep> stepBeforeRefine = std::move(lastStep_);
+    previous_.reset();
+    previewCancelled_ = false;
+    lastStep_.reset();
+    MassSpringSystem& system = run.job.system;
+    const RelaxResult r = refineRun(system, o);
+    run.state.steps = r.steps;
+    run.state.residual = r.residual;
+    run.state.stiffnessScale = 1;
+    const bool cancelled = r.stopReason == "cancelled" || superseded();
+    if (cancelled) {
+        if (!hasPending()) finish(run, "cancelled", system.position);
+    } else {
+        run.state.converged = r.converged;
+        finish(run, r.stopReason, system.position);
+        if (r.converged) refined_ = system;
+    }
+    if (cancelled && hasPending() && beforeRefine) {
+        previous_ = std::move(beforeRefine);
+        lastStep_ = std::move(stepBeforeRefine);
+    } else {
+        previous_ = std::move(system);
     }
 }
 

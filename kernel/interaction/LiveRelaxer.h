@@ -30,6 +30,7 @@
 #include "physics/WarmStart.h"
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
@@ -120,7 +121,20 @@ class LiveRelaxer {
     void start(const MassSpringSystem& system, std::uint64_t generation, LivePhase phase);
     void workerLoop();
     void applyNiceness();
+    /// One job on the worker: what it publishes, and since when it runs.
+    struct JobRun {
+        Job& job;
+        std::chrono::steady_clock::time_point start;
+        LiveState state;
+        double seconds() const; ///< since start
+    };
     void runJob(Job& job);
+    void runPreview(JobRun& run);
+    void runRefine(JobRun& run);
+    /// The options every run shares: the cancel flags, threads and time limit.
+    RelaxOptions jobOptions();
+    /// Publishes run's state, ended with `reason` at `positions`.
+    void finish(JobRun& run, const std::string& reason, std::vector<Vec3> positions);
     void publish(LiveState state);
     bool superseded() const;
     bool hasPending() const;
@@ -185,6 +199,12 @@ class LiveRelaxer {
         std::optional<MassSpringSystem> before;
     };
     PreviewStart preparePreviewStart(MassSpringSystem& soft);
+    /// Sets o's progress callback to publish the preview's shapes of `knots` knots (at stiffness
+    /// `scale`) as often as the publish interval asks; `lastShown`: when one was last shown.
+    void publishPreviewProgress(JobRun& run, RelaxOptions& o, std::size_t knots, double scale,
+                                double lastShown);
+    /// After a preview: its step kept as lastStep_ when it converged after a rest-length edit.
+    void rememberStep(bool converged, PreviewStart& start, const MassSpringSystem& soft);
     /// Worker thread only: extrapolate()'s residual test, kept for the topology of its last use
     /// (a drag's steps share it; only the law is updated): the force field, the bars and fixed
     /// flags it was built for, and scratch.
