@@ -83,6 +83,7 @@ std::shared_ptr<const LiveState> awaitRun(const LiveRelaxer& live, std::uint64_t
 class PublicationLog {
   public:
     explicit PublicationLog(bool keepShapes) : keepShapes_(keepShapes) {}
+    bool keepsShapes() const { return keepShapes_; }
     /// A shape counts once: the end of a run publishes again the positions of its last report.
     void record(const LiveState& state) {
         if (state.positions.empty())
@@ -249,8 +250,9 @@ void runDrag(const char* name, Document& doc, LiveRelaxer& live, PublicationLog&
             std::this_thread::sleep_for(std::chrono::duration<double>(refineGap));
         }
         shown.add(log.of(generation));
-        distances.add(log.takeShapes(generation), editSeconds, before,
-                      doc.compiled().system.position);
+        if (log.keepsShapes()) // --on-screen
+            distances.add(log.takeShapes(generation), editSeconds, before,
+                          doc.compiled().system.position);
         edit.push_back(editSeconds);
         relax.push_back(timing.relaxSeconds);
         iterations.push_back(static_cast<double>(timing.steps));
