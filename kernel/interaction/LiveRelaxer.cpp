@@ -349,7 +349,7 @@ void LiveRelaxer::runPreview(JobRun& run) {
         shown.positions = soft.position;
         publish(std::move(shown));
     }
-    publishPreviewProgress(run, o, soft.knotCount(), scale, lastShown);
+    setShapePublisher(run, o, soft.knotCount(), scale, lastShown);
     const RelaxResult r = relaxer_->relax(soft, o);
     run.state.steps = r.steps;
     run.state.residual = r.residual;
@@ -373,8 +373,8 @@ void LiveRelaxer::runPreview(JobRun& run) {
 // off as the last one was) would keep a shape on screen longer than the publish interval: with a
 // Newton iteration of 25 ms that is every iteration, not every second one (50 ms) as an interval
 // test alone would give.
-void LiveRelaxer::publishPreviewProgress(JobRun& run, RelaxOptions& o, std::size_t knots,
-                                         double scale, double lastShown) {
+void LiveRelaxer::setShapePublisher(JobRun& run, RelaxOptions& o, std::size_t knots,
+                                    double scale, double lastShown) {
     o.progressInterval = 0;
     o.progress = [this, &run, knots, scale, lastShown,
                   lastReport = 0.0](const RelaxProgress& p) mutable {

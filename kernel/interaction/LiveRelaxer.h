@@ -201,8 +201,8 @@ class LiveRelaxer {
     PreviewStart preparePreviewStart(MassSpringSystem& soft);
     /// Sets o's progress callback to publish the preview's shapes of `knots` knots (at stiffness
     /// `scale`) as often as the publish interval asks; `lastShown`: when one was last shown.
-    void publishPreviewProgress(JobRun& run, RelaxOptions& o, std::size_t knots, double scale,
-                                double lastShown);
+    void setShapePublisher(JobRun& run, RelaxOptions& o, std::size_t knots, double scale,
+                           double lastShown);
     /// After a preview: its step kept as lastStep_ when it converged after a rest-length edit.
     void rememberStep(bool converged, PreviewStart& start, const MassSpringSystem& soft);
     /// Worker thread only: extrapolate()'s residual test, kept for the topology of its last use
