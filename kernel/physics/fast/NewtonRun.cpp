@@ -493,7 +493,6 @@ void NewtonRun::hintedStart(double tolerance) {
 
 /// Back to the material's law; the residual under it at x_.
 double NewtonRun::materialLawResidual() {
-    compressionBlend_ = -1;
     setCompression(0.0);
     return evaluate(x_);
 }
@@ -506,6 +505,7 @@ void NewtonRun::setHintedLaw() {
         kCompression_[b] = hint[b] > 0 ? std::max(system_.kCompression[b], system_.kTension[b])
                                        : system_.kCompression[b];
     field_.setCompressionStiffness(kCompression_);
+    compressionBlend_ = -1; // no blend: setCompression sets every bar's law again
 }
 
 /// Whether the hinted iterations stop before the next one. With hintBeforeCancel a cancel ends
@@ -520,7 +520,6 @@ bool NewtonRun::hintStopRequested(bool moved, double startResidual) {
     if (!moved || !(options_.cancel && options_.cancel->load(std::memory_order_relaxed)))
         return false;
     const double material = materialLawResidual();
-    compressionBlend_ = -1; // hintedStart's end sets the material's law again
     setHintedLaw();
     residual_ = evaluate(x_);
     return hintWorthKeeping(material, startResidual) && stopRequested();
