@@ -25,6 +25,16 @@ inline Camera fixedCamera() {
     return camera;
 }
 
+/// A piece of `rows` x `columns` with bars `bar` m long hung from `rail` (an attach command).
+inline PieceId attachPiece(Document& doc, RailId rail, int columns, int rows, double bar) {
+    AttachToRailArgs args;
+    args.rail = rail;
+    args.columns = columns;
+    args.rows = rows;
+    args.bar = bar;
+    return doc.execute(AttachToRailCommand{args}).pieces.front();
+}
+
 /// Rails: 1 "crown" (closed, r = 2, z = 3), 2 "ring" (closed, r = 0.8, z = 0), 3 "beam" (open,
 /// 2 m long at z = 3.5 beside the crown). Piece 1 hangs from the crown: 24 columns, 6 rows, bar 0.35.
 struct Scene {
@@ -37,12 +47,7 @@ struct Scene {
         crown = doc.execute(AddRailCommand{"crown", polygonRail(24, 2.0, 3.0)}).rails.front();
         ring = doc.execute(AddRailCommand{"ring", polygonRail(24, 0.8, 0.0)}).rails.front();
         beam = doc.execute(AddRailCommand{"beam", lineRail({2.5, -1, 3.5}, {2.5, 1, 3.5})}).rails.front();
-        AttachToRailArgs args;
-        args.rail = crown;
-        args.columns = 24;
-        args.rows = 6;
-        args.bar = 0.35;
-        net = doc.execute(AttachToRailCommand{args}).pieces.front();
+        net = attachPiece(doc, crown, 24, 6, 0.35);
         doc.endGesture();
     }
 };

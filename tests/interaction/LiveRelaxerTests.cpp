@@ -308,12 +308,7 @@ TEST_CASE("live relaxer: a shape is carried on to the same knots only: rows adde
     Document other;
     const RailId wide =
         other.execute(AddRailCommand{"wide", polygonRail(24, 2.5, 3.0)}).rails.front();
-    AttachToRailArgs args;
-    args.rail = wide;
-    args.columns = 24;
-    args.rows = 6;
-    args.bar = 0.35;
-    const PieceId otherNet = other.execute(AttachToRailCommand{args}).pieces.front();
+    const PieceId otherNet = attachPiece(other, wide, 24, 6, 0.35);
     REQUIRE(otherNet == scene.net);
     CHECK_FALSE(sameKnotsWhereMatched(base, other.compiled().system));
     CHECK_FALSE(heldAtTheSamePlaces(base, other.compiled().system));
@@ -540,12 +535,7 @@ TEST_CASE("live relaxer: a refine after an edit starts from the last refined sha
     CurveSpec wave;
     wave.points = {{0, 0, 3}, {1, 0.3, 3.2}, {2, -0.3, 3}, {3, 0.3, 3.2}, {4, 0, 3}};
     const RailId rail = doc.execute(AddRailCommand{"wave", wave}).rails.front();
-    AttachToRailArgs banner;
-    banner.rail = rail;
-    banner.columns = 41;
-    banner.rows = 30;
-    banner.bar = 0.12;
-    const PieceId piece = doc.execute(AttachToRailCommand{banner}).pieces.front();
+    const PieceId piece = attachPiece(doc, rail, 41, 30, 0.12);
 
     LiveRelaxer live;
     std::uint64_t generation = 0;
