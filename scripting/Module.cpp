@@ -13,6 +13,7 @@ extern "C" __attribute__((visibility("default"))) int luaopen_netsculpt(lua_Stat
     registerHandleTypes(L);
     lua_newtable(L);
     addModuleDocumentFunctions(L);
+    addModuleRailFunctions(L);
     addModuleRelaxFunctions(L);
     addModuleIoFunctions(L);
     lua_pushliteral(L, NETSCULPT_VERSION);

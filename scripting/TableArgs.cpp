@@ -21,7 +21,10 @@ TableArgs::TableArgs(const Call& call, int index, std::initializer_list<const ch
     : call_(call), index_(lua_absindex(call.L, index)) {
     lua_State* L = call.L;
     if (lua_type(L, index_) != LUA_TTABLE) {
-        if (index_ == 1 || lua_type(L, 1) == LUA_TTABLE)
+        if (index_ == 1) // a module function, ns.circle{...}
+            call.fail(std::string("call it as ns.") + call.name + "{" + allowedKeys(allowed) +
+                      "}, got " + describe(L, index_));
+        if (lua_type(L, 1) == LUA_TTABLE) // a method called with a dot: the table is self
             call.fail(std::string("call it as doc:") + call.name +
                       "{...} (with a colon and a table of arguments)");
         call.fail(std::string("expected a table of arguments {") + allowedKeys(allowed) +

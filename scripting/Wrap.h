@@ -9,8 +9,9 @@ namespace netsculpt::lua {
 // wrap_Document.cpp: ns.new, ns.open; undo, redo, save, set_gravity, hash, rename, rails, pieces
 void addModuleDocumentFunctions(lua_State* L);
 void addDocumentMethods(lua_State* L); // calls the add*Methods below too
-// wrap_Rails.cpp: add_rail, import_rails, remove_rail
+// wrap_Rails.cpp: add_rail, import_rails, remove_rail; ns.circle
 void addRailMethods(lua_State* L);
+void addModuleRailFunctions(lua_State* L);
 // wrap_Pieces.cpp: attach_to_rail, attach_to_piece, split, set_*, connect_to_rail, ...
 void addPieceMethods(lua_State* L);
 // wrap_Queries.cpp: piece_info, rail_info, knots; p:info(), p:knots(), r:info()

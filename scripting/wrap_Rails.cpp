@@ -1,5 +1,6 @@
-// Rails: doc:add_rail, doc:import_rails, doc:remove_rail.
+// Rails: doc:add_rail, doc:import_rails, doc:remove_rail; ns.circle, the points of a ring rail.
 
+#include "geometry/Circle.h"
 #include "io/Import.h"
 #include "scripting/Context.h"
 #include "scripting/Handles.h"
@@ -88,7 +89,27 @@ int w_remove_rail(Call& call) {
     return 0;
 }
 
+/// ns.circle{radius = r, points = n [, centre = {x, y, z}]} -> {{x,y,z}, ...}: the corners of
+/// a regular polygon in the horizontal circle, for doc:add_rail{points = ..., closed = true}.
+int w_circle(Call& call) {
+    const TableArgs args(call, 1, {"radius", "points", "centre"});
+    const double radius = args.positive("radius", std::nullopt);
+    const auto vertices = int(args.whole("points", std::nullopt, 3, kMaxCircleVertices));
+    const Vec3 centre = args.has("centre") ? args.vec3("centre") : Vec3{};
+    const std::vector<Vec3> corners = circlePoints(centre, radius, vertices);
+    lua_createtable(call.L, vertices, 0);
+    for (int i = 0; i < vertices; ++i) {
+        pushVec3(call.L, corners[std::size_t(i)]);
+        lua_rawseti(call.L, -2, lua_Integer(i) + 1);
+    }
+    return 1;
+}
+
 } // namespace
+
+void addModuleRailFunctions(lua_State* L) {
+    setFunctions(L, {{"circle", entry<w_circle>}});
+}
 
 void addRailMethods(lua_State* L) {
     setFunctions(L, {{"add_rail", entry<w_add_rail>},

@@ -12,19 +12,11 @@
 local ns = require "netsculpt"
 local quick = os.getenv("NETSCULPT_QUICK") == "1" or (arg ~= nil and arg[1] == "--quick")
 
--- A closed polygon of n points: a circle of radius r (m) at height z (m).
-local function circle(r, z, n)
-  local points = {}
-  for i = 0, n - 1 do
-    local a = 2 * math.pi * i / n
-    points[#points + 1] = {r * math.cos(a), r * math.sin(a), z}
-  end
-  return points
-end
-
 local doc = ns.new()
-local top = doc:add_rail{name = "top ring", points = circle(1.2, 6.0, 96), closed = true}
-local bottom = doc:add_rail{name = "lower ring", points = circle(2.2, 1.2, 96), closed = true}
+local top = doc:add_rail{name = "top ring", closed = true,
+                         points = ns.circle{radius = 1.2, points = 96, centre = {0, 0, 6.0}}}
+local bottom = doc:add_rail{name = "lower ring", closed = true,
+                            points = ns.circle{radius = 2.2, points = 96, centre = {0, 0, 1.2}}}
 
 local tube = doc:attach_to_rail{rail = top, columns = 48, rows = 20, bar = 0.18}
 local skirt = doc:attach_to_piece{piece = tube, gear = 2, rows = 16, bar = 0.15}

@@ -28,27 +28,21 @@ for _, a in ipairs(arg or {}) do
   if a == "--no-relax" then skip_relax = true end
 end
 
-local function circle(r, z, n)
-  local points = {}
-  for i = 0, n - 1 do
-    local a = 2 * math.pi * i / n
-    points[#points + 1] = {r * math.cos(a), r * math.sin(a), z}
-  end
-  return points
-end
-
 local doc = ns.new()
 
 -- Rails
-local crown = doc:add_rail{name = "crown", points = circle(6.0, 14.0, 240), closed = true}
-local inner = doc:add_rail{name = "inner ring", points = circle(1.5, 13.0, 96), closed = true}
+local crown = doc:add_rail{name = "crown", closed = true,
+                           points = ns.circle{radius = 6.0, points = 240, centre = {0, 0, 14.0}}}
+local inner = doc:add_rail{name = "inner ring", closed = true,
+                           points = ns.circle{radius = 1.5, points = 96, centre = {0, 0, 13.0}}}
 local halo_control = {}
 for i = 0, 11 do
   local a = 2 * math.pi * i / 12
   halo_control[#halo_control + 1] = {3.2 * math.cos(a), 3.2 * math.sin(a), 11.0 + 0.6 * math.cos(3 * a)}
 end
 local halo = doc:add_rail{name = "halo", degree = 3, control = halo_control, closed = true}
-local floor_ring = doc:add_rail{name = "floor ring", points = circle(4.5, 5.0, 240), closed = true}
+local floor_ring = doc:add_rail{name = "floor ring", closed = true,
+                                points = ns.circle{radius = 4.5, points = 240, centre = {0, 0, 5.0}}}
 local wave = doc:add_rail{name = "wave", degree = 3, closed = false,
                           control = {{8, -6, 12.5}, {12, -3, 13.5}, {9, 1, 12.5}, {13, 5, 13.5}, {10, 8, 12.5}}}
 
@@ -72,9 +66,12 @@ doc:set_bar_length{piece = canopy_a, column = 80, length = 0.2}
 doc:set_bar_length{piece = canopy_b, column = 80, length = 0.14}
 doc:set_bar_length{piece = canopy_a, column = 0, length = 0.16}
 
-local names = {[canopy_a] = "canopy a", [canopy_b] = "canopy b", [canopy_c] = "canopy c", [drape] = "drape",
-               [veil] = "veil", [core] = "core", [bell] = "bell", [banner] = "banner", [tail] = "tail"}
-for piece, name in pairs(names) do doc:rename{piece = piece, name = name} end
+-- A list, not a table keyed by handles: pairs() would visit those in an order that changes from
+-- run to run, and so would the journal.
+local names = {{canopy_a, "canopy a"}, {canopy_b, "canopy b"}, {canopy_c, "canopy c"},
+               {drape, "drape"}, {veil, "veil"}, {core, "core"}, {bell, "bell"},
+               {banner, "banner"}, {tail, "tail"}}
+for _, named in ipairs(names) do doc:rename{piece = named[1], name = named[2]} end
 
 if not skip_relax then
   local result = doc:relax{max_seconds = 600}

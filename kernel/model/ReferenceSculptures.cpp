@@ -1,5 +1,6 @@
 #include "model/ReferenceSculptures.h"
 
+#include "geometry/Circle.h"
 #include "model/Edits.h"
 
 #include <cmath>
@@ -15,10 +16,7 @@ CurveSpec circularRail(int columns) {
     CurveSpec circle;
     circle.closed = true;
     const double radius = columns * kReferenceSpacing / (2 * std::numbers::pi);
-    for (int i = 0; i < columns; ++i) {
-        const double angle = 2 * std::numbers::pi * i / columns;
-        circle.points.push_back({radius * std::cos(angle), radius * std::sin(angle), 0});
-    }
+    circle.points = circlePoints({}, radius, columns);
     return circle;
 }
 

@@ -10,17 +10,9 @@
 local ns = require "netsculpt"
 local quick = os.getenv("NETSCULPT_QUICK") == "1" or (arg ~= nil and arg[1] == "--quick")
 
-local function circle(r, z, n)
-  local points = {}
-  for i = 0, n - 1 do
-    local a = 2 * math.pi * i / n
-    points[#points + 1] = {r * math.cos(a), r * math.sin(a), z}
-  end
-  return points
-end
-
 local doc = ns.new()
-local ring = doc:add_rail{name = "ring", points = circle(1.0, 4.0, 72), closed = true}
+local ring = doc:add_rail{name = "ring", closed = true,
+                          points = ns.circle{radius = 1.0, points = 72, centre = {0, 0, 4.0}}}
 local parent = doc:attach_to_rail{rail = ring, columns = 36, rows = 10, bar = 0.15}
 local child = doc:attach_to_piece{piece = parent, gear = 1, rows = 8, bar = 0.15}
 doc:rename{piece = parent, name = "parent"}

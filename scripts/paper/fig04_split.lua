@@ -10,17 +10,9 @@
 
 local ns = require "netsculpt"
 
-local function circle(r, z, n)
-  local points = {}
-  for i = 0, n - 1 do
-    local a = 2 * math.pi * i / n
-    points[#points + 1] = {r * math.cos(a), r * math.sin(a), z}
-  end
-  return points
-end
-
 local doc = ns.new()
-local ring = doc:add_rail{name = "ring", points = circle(1.5, 4.0, 96), closed = true}
+local ring = doc:add_rail{name = "ring", closed = true,
+                          points = ns.circle{radius = 1.5, points = 96, centre = {0, 0, 4.0}}}
 local tube = doc:attach_to_rail{rail = ring, columns = 48, rows = 12, bar = 0.2}
 doc:export("before.csv")
 

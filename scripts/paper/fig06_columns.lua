@@ -9,17 +9,9 @@
 
 local ns = require "netsculpt"
 
-local function circle(r, z, n)
-  local points = {}
-  for i = 0, n - 1 do
-    local a = 2 * math.pi * i / n
-    points[#points + 1] = {r * math.cos(a), r * math.sin(a), z}
-  end
-  return points
-end
-
 local doc = ns.new()
-local ring = doc:add_rail{name = "ring", points = circle(1.2, 4.0, 120), closed = true}
+local ring = doc:add_rail{name = "ring", closed = true,
+                          points = ns.circle{radius = 1.2, points = 120, centre = {0, 0, 4.0}}}
 local tube = doc:attach_to_rail{rail = ring, columns = 24, rows = 10, bar = 0.3}
 for _, columns in ipairs{24, 36, 60} do
   doc:set_columns{piece = tube, columns = columns}

@@ -10,20 +10,13 @@
 local ns = require "netsculpt"
 local quick = os.getenv("NETSCULPT_QUICK") == "1" or (arg ~= nil and arg[1] == "--quick")
 
-local function circle(cx, r, z, n)
-  local points = {}
-  for i = 0, n - 1 do
-    local a = 2 * math.pi * i / n
-    points[#points + 1] = {cx + r * math.cos(a), r * math.sin(a), z}
-  end
-  return points
-end
-
 local doc = ns.new()
 local gears = {3, 2, 1, "1/2", "1/3"}
 local bars = {[3] = 0.13, [2] = 0.15, [1] = 0.18, ["1/2"] = 0.3, ["1/3"] = 0.45}
 for i, gear in ipairs(gears) do
-  local ring = doc:add_rail{name = "gear " .. gear, points = circle((i - 3) * 2.6, 0.8, 4.0, 48), closed = true}
+  local centre = {(i - 3) * 2.6, 0, 4.0}
+  local ring = doc:add_rail{name = "gear " .. gear, closed = true,
+                            points = ns.circle{radius = 0.8, points = 48, centre = centre}}
   local parent = doc:attach_to_rail{rail = ring, columns = 24, rows = 6, bar = 0.2}
   local child = doc:attach_to_piece{piece = parent, gear = gear, rows = 6, bar = bars[gear]}
   doc:rename{piece = parent, name = "parent " .. i}

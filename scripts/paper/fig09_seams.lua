@@ -10,17 +10,9 @@
 local ns = require "netsculpt"
 local quick = os.getenv("NETSCULPT_QUICK") == "1" or (arg ~= nil and arg[1] == "--quick")
 
-local function circle(r, z, n)
-  local points = {}
-  for i = 0, n - 1 do
-    local a = 2 * math.pi * i / n
-    points[#points + 1] = {r * math.cos(a), r * math.sin(a), z}
-  end
-  return points
-end
-
 local doc = ns.new()
-local ring = doc:add_rail{name = "ring", points = circle(1.5, 5.0, 96), closed = true}
+local ring = doc:add_rail{name = "ring", closed = true,
+                          points = ns.circle{radius = 1.5, points = 96, centre = {0, 0, 5.0}}}
 local tube = doc:attach_to_rail{rail = ring, columns = 60, rows = 14, bar = 0.2}
 local a, rest = doc:split{piece = tube, column = 20}
 local b, c = doc:split{piece = rest, column = 20}

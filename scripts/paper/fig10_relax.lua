@@ -9,18 +9,11 @@
 
 local ns = require "netsculpt"
 
-local function circle(r, z, n)
-  local points = {}
-  for i = 0, n - 1 do
-    local a = 2 * math.pi * i / n
-    points[#points + 1] = {r * math.cos(a), r * math.sin(a), z}
-  end
-  return points
-end
-
 local doc = ns.new()
-local top = doc:add_rail{name = "top", points = circle(1.0, 4.0, 64), closed = true}
-local bottom = doc:add_rail{name = "bottom", points = circle(1.4, 2.4, 64), closed = true}
+local top = doc:add_rail{name = "top", closed = true,
+                         points = ns.circle{radius = 1.0, points = 64, centre = {0, 0, 4.0}}}
+local bottom = doc:add_rail{name = "bottom", closed = true,
+                            points = ns.circle{radius = 1.4, points = 64, centre = {0, 0, 2.4}}}
 local tube = doc:attach_to_rail{rail = top, columns = 24, rows = 6, bar = 0.3}
 doc:connect_to_rail{piece = tube, rail = bottom, at = 0}
 

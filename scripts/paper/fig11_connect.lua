@@ -14,20 +14,13 @@
 local ns = require "netsculpt"
 local quick = os.getenv("NETSCULPT_QUICK") == "1" or (arg ~= nil and arg[1] == "--quick")
 
-local function circle(cx, r, z, n)
-  local points = {}
-  for i = 0, n - 1 do
-    local a = 2 * math.pi * i / n
-    points[#points + 1] = {cx + r * math.cos(a), r * math.sin(a), z}
-  end
-  return points
-end
-
 local doc = ns.new()
 for i, twist in ipairs{{at = 0, reverse = false}, {at = 1 / 6, reverse = true}} do
   local x = (i == 1) and -2.0 or 2.0
-  local top = doc:add_rail{name = "top " .. i, points = circle(x, 1.0, 4.5, 60), closed = true}
-  local bottom = doc:add_rail{name = "bottom " .. i, points = circle(x, 1.2, 2.3, 60), closed = true}
+  local top = doc:add_rail{name = "top " .. i, closed = true,
+                           points = ns.circle{radius = 1.0, points = 60, centre = {x, 0, 4.5}}}
+  local bottom = doc:add_rail{name = "bottom " .. i, closed = true,
+                              points = ns.circle{radius = 1.2, points = 60, centre = {x, 0, 2.3}}}
   local tube = doc:attach_to_rail{rail = top, columns = 30, rows = 20, bar = 0.2}
   doc:connect_to_rail{piece = tube, rail = bottom, at = twist.at, reverse = twist.reverse}
   doc:rename{piece = tube, name = i == 1 and "straight" or "twisted"}

@@ -1,10 +1,9 @@
 #pragma once
 // Small sculptures shared by the model tests, built through the model's edits.
 
+#include "geometry/Circle.h"
 #include "model/Edits.h"
 
-#include <cmath>
-#include <numbers>
 
 namespace netsculpt::test {
 
@@ -12,10 +11,7 @@ namespace netsculpt::test {
 inline CurveSpec polygonRail(int n, double r, double z = 0) {
     CurveSpec spec;
     spec.closed = true;
-    for (int i = 0; i < n; ++i) {
-        const double a = 2 * std::numbers::pi * i / n;
-        spec.points.push_back({r * std::cos(a), r * std::sin(a), z});
-    }
+    spec.points = circlePoints({0, 0, z}, r, n);
     return spec;
 }
 

@@ -36,6 +36,25 @@ T.case("rails: polyline, B-spline, queries", function()
   T.raises(function() return spline:info() end, "info: rail 2 was removed")
 end)
 
+T.case("ns.circle: a ring rail's points", function()
+  local ring = ns.circle{radius = 2, points = 64, centre = {0, 0, 5}}
+  local reference = T.circle(2, 5, 64)
+  T.eq(#ring, 64)
+  for i = 1, 64 do
+    for k = 1, 3 do T.eq(ring[i][k], reference[i][k], "corner " .. i) end
+  end
+  local square = ns.circle{radius = 2, points = 4, centre = {1, -3, 6}}
+  local expected = {{3, -3}, {1, -1}, {-1, -3}, {1, -5}}
+  for i = 1, 4 do
+    T.near(square[i][1], expected[i][1], 1e-15); T.near(square[i][2], expected[i][2], 1e-15)
+    T.eq(square[i][3], 6)
+  end
+  T.eq(ns.circle{radius = 1, points = 3}[1][3], 0)
+  local doc = ns.new()
+  local rail = doc:add_rail{name = "ring", points = ns.circle{radius = 2, points = 64}, closed = true}
+  T.near(rail:info().length, 64 * 2 * 2 * math.sin(math.pi / 64), 1e-9)
+end)
+
 T.case("import_rails from CSV", function()
   local doc = ns.new()
   local rails = doc:import_rails(T.data("two_rails.csv"))

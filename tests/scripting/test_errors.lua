@@ -49,6 +49,19 @@ T.case("missing, unknown and misspelt arguments", function()
   fails(here(), function() doc.set_rows{piece = p, rows = 3} end, "set_rows: call it as doc:set_rows")
 end)
 
+T.case("ns.circle names the bad value", function()
+  fails(here(), function() ns.circle{radius = 0, points = 8} end,
+        "circle: argument 'radius' must be a finite number > 0, got 0")
+  fails(here(), function() ns.circle{radius = 1, points = 2} end,
+        "circle: argument 'points' must be a whole number from 3 to 100000, got 2")
+  fails(here(), function() ns.circle{radius = 1, points = 8, centre = {0, 0}} end,
+        "circle: argument 'centre' must be a point {x, y, z}", "got a table of 2 values")
+  fails(here(), function() ns.circle{radius = 1, points = 8, center = {0, 0, 0}} end,
+        "circle: unknown argument \"center\"; allowed: radius, points, centre")
+  fails(here(), function() ns.circle(1, 8) end,
+        "circle: call it as ns.circle{radius, points, centre}, got 1")
+end)
+
 T.case("enums list the valid values", function()
   fails(here(), function() doc:add_rail{points = T.circle(1, 1, 8), sampling = "arc"} end,
         "add_rail: argument 'sampling' must be one of \"arclength\" or \"parameter\", got \"arc\"")
