@@ -131,6 +131,48 @@ TEST_CASE("default.lua: the Quick start sculpture", "[gallery]") {
     CHECK(readKnots(out / "knots.csv").size() == 48 * 20 + 96 * 16);
 }
 
+/// The README's first Lua example, as a reader would copy it.
+std::string readmeExample() {
+    std::ifstream in(fs::path(NETSCULPT_SOURCE_DIR) / "README.md");
+    REQUIRE(in);
+    std::string line, script;
+    bool inside = false;
+    while (std::getline(in, line)) {
+        if (!inside && line == "```lua") {
+            inside = true;
+        } else if (inside && line == "```") {
+            return script;
+        } else if (inside) {
+            script += line + "\n";
+        }
+    }
+    FAIL("README.md has no ```lua block");
+    return script;
+}
+
+TEST_CASE("README: the Lua example runs, and its net hangs from its two rails", "[gallery]") {
+    const fs::path out = freshFolder("readme-example");
+    {
+        std::ofstream script(out / "example.lua");
+        script << readmeExample() << "doc:write_report(\"report.json\")\n";
+    }
+    const Ran ran = runCli("run " + quoted(out / "example.lua") + " --out " + quoted(out));
+    INFO(ran.output);
+    REQUIRE(ran.exitCode == 0);
+    CHECK(fs::file_size(out / "view.png") > 1000);
+    CHECK(readKnots(out / "knots.csv").size() == 48 * 30 + 96 * 20);
+    const json report = readJson(out / "report.json");
+    CHECK(report["knots"] == 48 * 30 + 96 * 20 - 48); // gear 2 shares 48 of the skirt's top row
+    REQUIRE(report["relaxed"] == true);
+    checkHangsAsRope(report);
+    double lifted = 0;
+    for (const json& rail : report["rails"])
+        lifted += rail["reaction"]["z"].get<double>();
+    const double weight = report["total_weight"];
+    CHECK(lifted == Approx(weight).epsilon(1e-9));
+    CHECK(report["rails"][1]["reaction"]["z"].get<double>() > 1); // the skirt sags into its ring
+}
+
 TEST_CASE("fig01: two imported closed rails and a tube between them", "[gallery]") {
     const fs::path out = runGallery("paper/fig01_two_rails.lua");
     const json report = readJson(out / "report.json");
