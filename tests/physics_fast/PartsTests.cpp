@@ -1,6 +1,7 @@
 // A system of independent parts (kernel/physics/fast/Components.h): found as connected components
 // of the free knots, each relaxed as a system of its own by FastRelaxer, with the same forces and
 // the same equilibrium as in the whole system, and a part an edit did not touch left as it was.
+#include "geometry/Circle.h"
 #include "model/Compiler.h"
 #include "model/Edits.h"
 #include "physics/Forces.h"
@@ -24,10 +25,7 @@ namespace {
 CurveSpec ring(int n, double radius, Vec3 centre) {
     CurveSpec spec;
     spec.closed = true;
-    for (int i = 0; i < n; ++i) {
-        const double a = 2 * std::numbers::pi * i / n;
-        spec.points.push_back(centre + Vec3{radius * std::cos(a), radius * std::sin(a), 0});
-    }
+    spec.points = circlePoints(centre, radius, n);
     return spec;
 }
 

@@ -3,6 +3,7 @@
 // so no representable position is an equilibrium to 1e-6. The run must say so and stop, not
 // creep to its time limit, and what it returns is still the equilibrium up to that rounding.
 #include "ShapeDistance.h"
+#include "geometry/Circle.h"
 #include "model/Compiler.h"
 #include "model/Edits.h"
 #include "physics/Forces.h"
@@ -24,11 +25,7 @@ MassSpringSystem ropeTubeAt(double x) {
     CurveSpec ring;
     ring.closed = true;
     const int columns = 24;
-    const double radius = columns * 0.1 / (2 * std::numbers::pi);
-    for (int i = 0; i < columns; ++i) {
-        const double a = 2 * std::numbers::pi * i / columns;
-        ring.points.push_back({x + radius * std::cos(a), radius * std::sin(a), 0});
-    }
+    ring.points = circlePoints({x, 0, 0}, columns * 0.1 / (2 * std::numbers::pi), columns);
     Sculpture s;
     const RailId rail = addRail(s, "ring", ring);
     const PieceId piece = attachToRail(s, {rail, columns, 0, 12, 0.1, 0, false});
