@@ -32,9 +32,9 @@ local doc = ns.new()
 
 -- Rails
 local crown = doc:add_rail{name = "crown", closed = true,
-                           points = ns.circle{radius = 6.0, points = 240, centre = {0, 0, 14.0}}}
+                           points = ns.circle{radius = 6.0, points = 240, centre = {0, 0, 14}}}
 local inner = doc:add_rail{name = "inner ring", closed = true,
-                           points = ns.circle{radius = 1.5, points = 96, centre = {0, 0, 13.0}}}
+                           points = ns.circle{radius = 1.5, points = 96, centre = {0, 0, 13}}}
 local halo_control = {}
 for i = 0, 11 do
   local a = 2 * math.pi * i / 12
@@ -42,7 +42,7 @@ for i = 0, 11 do
 end
 local halo = doc:add_rail{name = "halo", degree = 3, control = halo_control, closed = true}
 local floor_ring = doc:add_rail{name = "floor ring", closed = true,
-                                points = ns.circle{radius = 4.5, points = 240, centre = {0, 0, 5.0}}}
+                                points = ns.circle{radius = 4.5, points = 240, centre = {0, 0, 5}}}
 local wave = doc:add_rail{name = "wave", degree = 3, closed = false,
                           control = {{8, -6, 12.5}, {12, -3, 13.5}, {9, 1, 12.5}, {13, 5, 13.5}, {10, 8, 12.5}}}
 
