@@ -10,9 +10,9 @@
 // few Newton iterations); when the run cut short was a preview of the same knots, from where it
 // stopped, which the new run shows at once (a drag as fast as the frames cuts every run short;
 // its hinted iterations first reach a state worth keeping: RelaxOptions::hintBeforeCancel).
-// refine() relaxes at
-// the material's stiffness in one run (the backend's own stiffness continuation) down to the
-// refine tolerance, publishing its residual as it converges and the positions at the end.
+// refine() relaxes at the material's stiffness in one run (the backend's own stiffness
+// continuation) down to the refine tolerance, publishing its residual as it converges and the
+// positions at the end.
 //
 // Warm starts: each preview passes the backend the tensions its start shape had in the system
 // before the edit (startTensions), which the fast path turns into a predictor step: after a small

@@ -4,7 +4,6 @@
 #include "geometry/Circle.h"
 #include "model/Edits.h"
 
-
 namespace netsculpt::test {
 
 /// A closed polyline rail: a regular polygon of `n` vertices, radius r, at height z.

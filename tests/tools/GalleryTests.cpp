@@ -113,24 +113,6 @@ double minZ(const std::vector<Knot>& knots) {
     return z;
 }
 
-} // namespace
-
-TEST_CASE("default.lua: the Quick start sculpture", "[gallery]") {
-    const fs::path out = runGallery("default.lua");
-    for (const char* file : {"knots.csv", "bars.obj", "sculpture.glb", "sculpture.png",
-                             "report.json", "report.md", "default.netj"}) {
-        INFO(file);
-        CHECK(fs::file_size(out / file) > 100);
-    }
-    const json report = readJson(out / "report.json");
-    CHECK(report["pieces"].size() == 2);
-    CHECK(pieceNamed(report, "tube")["columns"] == 48);
-    CHECK(pieceNamed(report, "skirt")["columns"] == 96); // gear 2
-    const int knots = report["knots"];
-    CHECK(knots == 48 * 20 + 96 * 16 - 48); // the skirt's top row shares 48 knots with the tube
-    CHECK(readKnots(out / "knots.csv").size() == 48 * 20 + 96 * 16);
-}
-
 /// The README's first Lua example, as a reader would copy it.
 std::string readmeExample() {
     std::ifstream in(fs::path(NETSCULPT_SOURCE_DIR) / "README.md");
@@ -148,6 +130,24 @@ std::string readmeExample() {
     }
     FAIL("README.md has no ```lua block");
     return script;
+}
+
+} // namespace
+
+TEST_CASE("default.lua: the Quick start sculpture", "[gallery]") {
+    const fs::path out = runGallery("default.lua");
+    for (const char* file : {"knots.csv", "bars.obj", "sculpture.glb", "sculpture.png",
+                             "report.json", "report.md", "default.netj"}) {
+        INFO(file);
+        CHECK(fs::file_size(out / file) > 100);
+    }
+    const json report = readJson(out / "report.json");
+    CHECK(report["pieces"].size() == 2);
+    CHECK(pieceNamed(report, "tube")["columns"] == 48);
+    CHECK(pieceNamed(report, "skirt")["columns"] == 96); // gear 2
+    const int knots = report["knots"];
+    CHECK(knots == 48 * 20 + 96 * 16 - 48); // the skirt's top row shares 48 knots with the tube
+    CHECK(readKnots(out / "knots.csv").size() == 48 * 20 + 96 * 16);
 }
 
 TEST_CASE("README: the Lua example runs, and its net hangs from its two rails", "[gallery]") {
