@@ -111,12 +111,11 @@ void pushRailInfo(lua_State* L, int docIndex, const Sculpture& s, RailId id) {
 void pushKnots(lua_State* L, const Document& doc, PieceId id) {
     const CompiledSculpture& compiled = doc.compiled();
     const PieceKnots& knots = compiled.pieces.at(id);
-    const auto& position = compiled.system.position;
     lua_createtable(L, knots.rows, 0);
     for (int r = 0; r < knots.rows; ++r) {
         lua_createtable(L, knots.columns, 0);
         for (int c = 0; c < knots.columns; ++c) {
-            pushVec3(L, position[knots.at(r, c)]);
+            pushVec3(L, compiled.system.worldPosition(knots.at(r, c)));
             lua_rawseti(L, -2, c + 1);
         }
         lua_rawseti(L, -2, r + 1);

@@ -298,14 +298,18 @@ Document Document::load(const std::filesystem::path& file, std::vector<std::stri
     if (built != data.hash || hashSculpture(data.model) != data.hash)
         throw UserError(file.string() + " is inconsistent: its history builds a sculpture different from its model "
                                         "(the file was edited or damaged)");
-    const bool fits = data.positions.size() == st.compiled.system.knotCount();
-    if (fits && !forcesComputable(st.compiled.system, data.positions)) {
+    std::vector<Vec3> positions = data.positions;
+    const Vec3 shift = data.origin - st.compiled.system.origin; // format 1 saved from (0, 0, 0)
+    if (shift != Vec3{})
+        for (Vec3& p : positions) p += shift;
+    const bool fits = positions.size() == st.compiled.system.knotCount();
+    if (fits && !forcesComputable(st.compiled.system, positions)) {
         report({file.string() + ": the saved shape's knots are too far apart for the forces "
                                 "between them to be computed (a coordinate beyond about 1e150 m); "
                                 "starting from the initial geometry"},
                warnings);
     } else if (fits) {
-        st.compiled.system.position = data.positions;
+        st.compiled.system.position = std::move(positions);
         st.warm = data.warm;
         st.relaxed = data.relaxed;
         if (st.relaxed) st.relaxedSystem = st.compiled.system;
@@ -342,8 +346,9 @@ void Document::save(const std::filesystem::path& path) {
 
 void Document::saveSnapshot(const std::filesystem::path& path) const {
     const State& st = *state_;
-    writeFileDurably(path, encodeSnapshot(st.current(), st.compacted(), st.compiled.system.position, st.warm,
-                                          st.relaxed));
+    const MassSpringSystem& system = st.compiled.system;
+    writeFileDurably(path, encodeSnapshot(st.current(), st.compacted(), system.origin,
+                                          system.position, st.warm, st.relaxed));
 }
 
 CommandResult Document::execute(const Command& command, bool merge) {

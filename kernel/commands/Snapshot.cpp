@@ -21,7 +21,8 @@ std::string hex16(std::uint64_t v) {
 } // namespace
 
 std::string encodeSnapshot(const Sculpture& model, const std::vector<JournalEntry>& history,
-                           const std::vector<Vec3>& positions, bool warm, bool relaxed) {
+                           const Vec3& origin, const std::vector<Vec3>& positions, bool warm,
+                           bool relaxed) {
     Json j = Json::object();
     j["hash"] = hex16(hashSculpture(model));
     j["model"] = codec::sculptureJson(model);
@@ -34,7 +35,10 @@ std::string encodeSnapshot(const Sculpture& model, const std::vector<JournalEntr
         flat.push_back(codec::number(p.y, "knot position"));
         flat.push_back(codec::number(p.z, "knot position"));
     }
-    j["shape"] = Json{{"warm", warm}, {"relaxed", relaxed}, {"positions", std::move(flat)}};
+    j["shape"] = Json{{"warm", warm},
+                      {"relaxed", relaxed},
+                      {"origin", codec::vec3Json(origin, "the shape's origin")},
+                      {"positions", std::move(flat)}};
     std::string text = std::string(kSnapshotMagic) + " " + std::to_string(kSnapshotFormat) + "\n";
     try {
         text += j.dump(-1, ' ', true);
@@ -78,6 +82,7 @@ SnapshotData decodeSnapshot(std::string_view text, const std::string& name) {
         codec::ObjectReader sr(r.raw("shape"), "snapshot shape");
         out.warm = sr.boolean("warm");
         out.relaxed = sr.boolean("relaxed");
+        if (version >= 2) out.origin = sr.vec3("origin");
         const Json& flat = sr.raw("positions");
         if (!flat.is_array() || flat.size() % 3 != 0)
             throw UserError("\"positions\" must be a flat array of x, y, z numbers");

@@ -1,9 +1,13 @@
 #pragma once
 // Internal to kernel/commands: the snapshot file (Document::saveSnapshot). Line 1 is the header
-// "netsculpt-snapshot 1"; line 2 one JSON object:
+// "netsculpt-snapshot 2"; line 2 one JSON object:
 //   {"hash": "<hashSculpture, 16 hex digits>", "model": {rails, pieces, seams, id counters,
 //    gravity}, "history": [the compacted journal entries that build the model],
-//    "shape": {"warm": bool, "relaxed": bool, "positions": [x0, y0, z0, x1, ...]}}
+//    "shape": {"warm": bool, "relaxed": bool, "origin": [x, y, z],
+//              "positions": [x0, y0, z0, x1, ...]}}
+// The positions are measured from the origin (MassSpringSystem::origin), so that a shape relaxed
+// in site coordinates is saved to the last bit. Format 1 had no origin: its positions are the
+// sculpture's coordinates (origin (0, 0, 0)), and it is still read.
 // The history lets a loaded snapshot be undone, saved as a journal and turned into Lua; the
 // model and hash make the file self-describing and are checked against the history on load.
 
@@ -16,7 +20,7 @@
 
 namespace netsculpt {
 
-inline constexpr int kSnapshotFormat = 1;
+inline constexpr int kSnapshotFormat = 2;
 inline constexpr std::string_view kSnapshotMagic = "netsculpt-snapshot";
 
 /// Whether a file's text (or its first bytes) is a snapshot's rather than a journal's.
@@ -26,13 +30,15 @@ struct SnapshotData {
     Sculpture model;
     std::uint64_t hash = 0;
     std::vector<JournalEntry> history;
-    std::vector<Vec3> positions; ///< one per knot of the compiled model
+    Vec3 origin;                 ///< m; what the positions are measured from
+    std::vector<Vec3> positions; ///< m, from origin; one per knot of the compiled model
     bool warm = false;           ///< the positions come from a relaxation
     bool relaxed = false;        ///< ... that converged
 };
 
 std::string encodeSnapshot(const Sculpture& model, const std::vector<JournalEntry>& history,
-                           const std::vector<Vec3>& positions, bool warm, bool relaxed);
+                           const Vec3& origin, const std::vector<Vec3>& positions, bool warm,
+                           bool relaxed);
 /// Throws UserError naming `name` for a malformed file or a newer format.
 SnapshotData decodeSnapshot(std::string_view text, const std::string& name);
 

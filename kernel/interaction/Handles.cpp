@@ -9,7 +9,7 @@ namespace netsculpt {
 namespace {
 
 Vec3 knotPosition(const CompiledSculpture& compiled, PieceId id, int row, int column) {
-    return compiled.system.position[compiled.pieces.at(id).at(row, column)];
+    return compiled.system.worldPosition(compiled.pieces.at(id).at(row, column));
 }
 
 bool hasChildren(const Sculpture& s, PieceId id) { return !s.childrenOf(id).empty(); }
@@ -193,7 +193,8 @@ std::pair<Vec3, Vec3> sceneBounds(const Sculpture& s, const CompiledSculpture& c
     };
     for (const auto& [id, rail] : s.rails)
         for (double t : railStops(rail.curve().closed(), 64)) add(rail.curve().pointAt(t));
-    for (const Vec3& p : compiled.system.position) add(p);
+    const MassSpringSystem& sys = compiled.system;
+    for (std::size_t j = 0; j < sys.knotCount(); ++j) add(sys.worldPosition(j));
     if (!(lo.x <= hi.x)) return {Vec3{-2, -2, 0}, Vec3{2, 2, 3}}; // room for a first rail
     return {lo, hi};
 }

@@ -309,7 +309,7 @@ PieceId Interaction::pieceAt(double x, double y) const {
     PieceId found;
     for (std::size_t j = 0; j < sys.knotCount(); ++j) {
         if (sys.refStart.size() <= j + 1 || sys.refStart[j] == sys.refStart[j + 1]) continue;
-        const ScreenPoint sp = camera_->project(sys.position[j]);
+        const ScreenPoint sp = camera_->project(sys.worldPosition(j));
         if (!sp.visible) continue;
         const double d = std::hypot(sp.x - x, sp.y - y);
         if (d < best - 0.5 || (d < best + 0.5 && sp.depth < bestDepth)) {

@@ -67,7 +67,7 @@ std::string knotsCsv(const ExportInput& in) {
                 const std::uint32_t k = knots.at(r, c);
                 out += std::to_string(id.value) + "," + std::to_string(r) + "," +
                        std::to_string(c) + ",";
-                appendVec(out, sys.position[k], ',');
+                appendVec(out, sys.worldPosition(k), ',');
                 out += sys.fixed[k] ? ",1\n" : ",0\n";
             }
     return out;
@@ -113,7 +113,7 @@ std::string jsonDocument(const ExportInput& in) {
         nlohmann::json refs = nlohmann::json::array();
         for (std::uint32_t i = sys.refStart[k]; i < sys.refStart[k + 1]; ++i)
             refs.push_back({sys.refs[i].piece.value, sys.refs[i].row, sys.refs[i].column});
-        nlohmann::json knot{{"position", vec(sys.position[k])},
+        nlohmann::json knot{{"position", vec(sys.worldPosition(k))},
                             {"mass", sys.mass[k]},
                             {"fixed", sys.fixed[k] != 0},
                             {"refs", std::move(refs)}};

@@ -117,7 +117,13 @@ std::string glbBytes(const ExportInput& in) {
     std::vector<float> barPositions, barColours, barTension, railPositions, railColours;
     TubeMesh tubes;
     std::vector<float> tubeColours;
-    for (const SceneSegment& seg : scene.segments) {
+    // Vertices are floats: they are written from the system's origin, which the root node's
+    // translation adds back (in site coordinates a float of the sculpture's own would be off by
+    // up to half a metre).
+    const Vec3 origin = in.compiled.system.origin;
+    for (SceneSegment seg : scene.segments) {
+        seg.a -= origin;
+        seg.b -= origin;
         std::vector<float>& positions = seg.rail ? railPositions : barPositions;
         std::vector<float>& colours = seg.rail ? railColours : barColours;
         if (!seg.rail && radius > 0) {
@@ -171,6 +177,8 @@ std::string glbBytes(const ExportInput& in) {
     tinygltf::Node root;
     root.name = "netsculpt (z up)";
     root.rotation = {-std::sqrt(0.5), 0, 0, std::sqrt(0.5)}; // -90 deg about x: z up -> glTF's y up
+    if (origin != Vec3{})
+        root.translation = {origin.x, origin.z, -origin.y}; // the origin, turned the same way
     if (!mesh.primitives.empty()) {
         g.model.meshes.push_back(mesh);
         root.mesh = 0;

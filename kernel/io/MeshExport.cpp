@@ -76,9 +76,9 @@ std::string objText(const ExportInput& in) {
     std::size_t vertexCount = 0;
     if (!tubes) {
         out += "o knots\n";
-        for (const Vec3& p : sys.position) {
+        for (std::size_t k = 0; k < sys.knotCount(); ++k) {
             out += "v ";
-            appendVec(out, p, ' ');
+            appendVec(out, sys.worldPosition(k), ' ');
             out += '\n';
         }
         vertexCount = sys.knotCount();
@@ -97,7 +97,7 @@ std::string objText(const ExportInput& in) {
         TubeMesh mesh;
         for (std::size_t b = 0; b < sys.barCount(); ++b)
             if (sys.barPiece[b] == id)
-                appendTube(mesh, sys.position[sys.barA[b]], sys.position[sys.barB[b]],
+                appendTube(mesh, sys.worldPosition(sys.barA[b]), sys.worldPosition(sys.barB[b]),
                            in.options.tubeRadius);
         for (const Vec3& p : mesh.vertices) {
             out += "v ";
@@ -151,7 +151,7 @@ std::string plyText(const ExportInput& in) {
         return bytes(toSrgb(in.sculpture.piece(id).colour));
     };
     if (!tubes) {
-        vertices = sys.position;
+        for (std::size_t k = 0; k < sys.knotCount(); ++k) vertices.push_back(sys.worldPosition(k));
         for (std::size_t k = 0; k < sys.knotCount(); ++k)
             colours.push_back(sys.fixed[k] ? bytes(kRailColour)
                                            : pieceColour(sys.refs[sys.refStart[k]].piece));
@@ -162,7 +162,7 @@ std::string plyText(const ExportInput& in) {
     } else {
         for (std::size_t b = 0; b < sys.barCount(); ++b) {
             TubeMesh mesh;
-            appendTube(mesh, sys.position[sys.barA[b]], sys.position[sys.barB[b]],
+            appendTube(mesh, sys.worldPosition(sys.barA[b]), sys.worldPosition(sys.barB[b]),
                        in.options.tubeRadius);
             const auto base = std::uint32_t(vertices.size());
             vertices.insert(vertices.end(), mesh.vertices.begin(), mesh.vertices.end());

@@ -91,10 +91,12 @@ Scene buildScene(const Sculpture& s, const CompiledSculpture& c, const std::stri
         if (std::isfinite(t))
             scene.maxTension = std::max(scene.maxTension, t);
     for (std::uint32_t b = 0; b < sys.barCount(); ++b) {
-        SceneSegment seg{sys.position[sys.barA[b]], sys.position[sys.barB[b]], {}, false, b};
+        SceneSegment seg{sys.worldPosition(sys.barA[b]), sys.worldPosition(sys.barB[b]), {}, false,
+                         b};
+        const double length = distance(sys.position[sys.barA[b]], sys.position[sys.barB[b]]);
         if (colourBy == "piece") {
             seg.colour = toSrgb(s.piece(sys.barPiece[b]).colour);
-        } else if (isSlack(distance(seg.a, seg.b), sys.restLength[b])) {
+        } else if (isSlack(length, sys.restLength[b])) {
             seg.colour = kSlackColour;
         } else {
             seg.colour =
@@ -109,7 +111,7 @@ Scene buildScene(const Sculpture& s, const CompiledSculpture& c, const std::stri
     }
     for (std::size_t k = 0; k < sys.knotCount(); ++k)
         if (sys.fixed[k])
-            scene.heldKnots.push_back(sys.position[k]);
+            scene.heldKnots.push_back(sys.worldPosition(k));
 
     if (colourBy == "piece") {
         for (const auto& [id, piece] : s.pieces)

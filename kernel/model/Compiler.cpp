@@ -124,6 +124,7 @@ class Builder {
         uniteSharedKnots();
         assignIndices();
         buildBars();
+        out_.system.origin = chooseOrigin(s_);
         placeKnots();
         finishMasses();
         out_.system.gravity = s_.gravity;
@@ -218,7 +219,7 @@ class Builder {
         MassSpringSystem& sys = out_.system;
         if (sys.fixed[k]) return; // the first rail that holds a knot places it
         const double t = railPosition(edge, column);
-        sys.position[k] = s_.rail(edge.rail).curve().pointAt(t);
+        sys.position[k] = s_.rail(edge.rail).curve().pointAt(t) - sys.origin;
         sys.fixed[k] = 1;
         sys.hold[k] = RailHold{edge.rail, t};
     }
@@ -360,6 +361,21 @@ std::uint32_t CompiledSculpture::knotOf(PieceId piece, int row, int column) cons
 
 CompiledSculpture compileSculpture(const Sculpture& s) { return Builder(s).build(); }
 
+Vec3 chooseOrigin(const Sculpture& s) {
+    Vec3 low{HUGE_VAL, HUGE_VAL, HUGE_VAL}, high = -low;
+    for (const auto& [id, rail] : s.rails)
+        for (const Vec3& p : rail.curve().spec().points) {
+            low = {std::min(low.x, p.x), std::min(low.y, p.y), std::min(low.z, p.z)};
+            high = {std::max(high.x, p.x), std::max(high.y, p.y), std::max(high.z, p.z)};
+        }
+    const auto axis = [](double lo, double hi) {
+        const double centre = 0.5 * lo + 0.5 * hi;
+        const bool far = std::isfinite(centre) && std::abs(centre) > kOriginFreeRadius;
+        return far ? std::round(centre) : 0.0;
+    };
+    return {axis(low.x, high.x), axis(low.y, high.y), axis(low.z, high.z)};
+}
+
 namespace {
 
 /// A piece tied to a rail below whose rows grew: its free rows from the old rail row down are
@@ -413,7 +429,7 @@ std::size_t carryPositions(const CompiledSculpture& previous, CompiledSculpture&
         // A knot that existed keeps its relaxed position; a knot of a new row below moves with
         // the last old row's knot of its column, so that added rows start near the hung shape.
         const int row = std::min(ref.row, old->second.rows - 1);
-        const Vec3 relaxed = previous.system.position[old->second.at(row, ref.column)];
+        const Vec3 relaxed = inOrigin(previous.system, old->second.at(row, ref.column), sys.origin);
         const Vec3 start = initial[now->second.at(row, ref.column)];
         sys.position[k] = row == ref.row ? relaxed : initial[k] + (relaxed - start);
         ++carried;

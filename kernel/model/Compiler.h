@@ -30,11 +30,22 @@ struct CompiledSculpture {
 /// does not exist: a bar length not above half the spacing of the two knots it hangs from.
 CompiledSculpture compileSculpture(const Sculpture& s);
 
+/// Within this distance of (0, 0, 0) a coordinate's unit in the last place is at most 7.1e-15 m,
+/// a force of 1.4e-8 N on a 0.1 m bar of EA 2e5 N (half a millionth of a 2.9 g knot's weight),
+/// so a sculpture there is relaxed where it stands (m).
+constexpr double kOriginFreeRadius = 32;
+
+/// The system origin of `s` (MassSpringSystem::origin): per axis, the whole metre nearest the
+/// centre of the rails' points where that centre is more than kOriginFreeRadius from 0, else 0.
+/// Whole metres, so that moving a shape between two systems' origins is exact.
+Vec3 chooseOrigin(const Sculpture& s);
+
 /// Rail position t of column c of a rail edge.
 double railPosition(const RailEdge& edge, int column);
 
 /// A warm start after an edit: free knots of `next` that stand for the same (piece, row, column)
-/// as in `previous` take its (relaxed) position, for pieces whose column count is unchanged;
+/// as in `previous` take its (relaxed) position (moved to next's origin), for pieces whose column
+/// count is unchanged;
 /// knots of rows added below move with the last old row, except in a piece tied to a rail below,
 /// where the free rows from the old rail row down are spread evenly between the last row kept and
 /// the rail. Returns how many knots were carried.

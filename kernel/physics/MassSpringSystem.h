@@ -29,7 +29,7 @@ struct RailHold {
 
 struct MassSpringSystem {
     // ---- knots, index j in [0, knotCount()) ----
-    std::vector<Vec3> position;       ///< m; initial geometry (Eq. 1, 2) until relaxed
+    std::vector<Vec3> position;       ///< m, from origin; Eq. 1, 2 geometry until relaxed
     std::vector<double> mass;         ///< kg; knot_mass + 1/2 linear_density * sum of bar rest lengths
     std::vector<std::uint8_t> fixed;  ///< 1 = held by a rail (never moves), 0 = free
     std::vector<RailHold> hold;       ///< the rail holding a fixed knot; null rail for free knots
@@ -45,9 +45,25 @@ struct MassSpringSystem {
     std::vector<PieceId> barPiece;         ///< the piece the bar belongs to
 
     Vec3 gravity{0, 0, -9.81}; ///< m/s^2
+    /// m; the sculpture's point that is this system's (0, 0, 0): a knot stands at origin +
+    /// position[j] in the sculpture's coordinates. A sculpture in site coordinates (kilometres from
+    /// its (0, 0, 0)) is relaxed near the system's origin, where a bar's vector keeps the precision
+    /// the rope's stiffness needs (docs/performance.md, "The coordinates' precision floor").
+    /// Whole metres; (0, 0, 0) for a sculpture about its origin (chooseOrigin in Compiler.h).
+    Vec3 origin{0, 0, 0};
 
     std::size_t knotCount() const { return position.size(); }
     std::size_t barCount() const { return barA.size(); }
+    /// Knot j in the sculpture's coordinates (m).
+    Vec3 worldPosition(std::size_t j) const { return origin + position[j]; }
 };
+
+/// Knot j of `system` measured from `origin` instead of system.origin (m): its own position, bit
+/// for bit, when the two are the same; else moved by their difference, which is exact (whole
+/// metres), and rounded once to the precision of the result.
+inline Vec3 inOrigin(const MassSpringSystem& system, std::size_t j, const Vec3& origin) {
+    const Vec3& p = system.position[j];
+    return system.origin == origin ? p : p + (system.origin - origin);
+}
 
 } // namespace netsculpt

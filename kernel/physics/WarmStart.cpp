@@ -83,7 +83,7 @@ bool heldAtTheSamePlaces(const MassSpringSystem& previous, const MassSpringSyste
         for (std::size_t j = 0; j < next.knotCount(); ++j)
             if (std::uint64_t key = 0;
                 next.fixed[j] && previous.fixed[j] && knotKey(next, j, key) &&
-                distance(previous.position[j], next.position[j]) > kSamePlace)
+                distance(previous.worldPosition(j), next.worldPosition(j)) > kSamePlace)
                 return false;
         return true;
     }
@@ -94,7 +94,7 @@ bool heldAtTheSamePlaces(const MassSpringSystem& previous, const MassSpringSyste
             continue;
         const auto at = oldKnot.find(key);
         if (at != oldKnot.end() && previous.fixed[at->second] &&
-            distance(previous.position[at->second], next.position[j]) > kSamePlace)
+            distance(previous.worldPosition(at->second), next.worldPosition(j)) > kSamePlace)
             return false;
     }
     return true;
@@ -124,7 +124,7 @@ std::size_t carryMatchedPositions(const MassSpringSystem& previous, MassSpringSy
         std::size_t carried = 0;
         for (std::size_t j = 0; j < next.knotCount(); ++j)
             if (std::uint64_t key = 0; !next.fixed[j] && knotKey(next, j, key)) {
-                next.position[j] = previous.position[j];
+                next.position[j] = inOrigin(previous, j, next.origin);
                 ++carried;
             }
         return carried;
@@ -138,7 +138,7 @@ std::size_t carryMatchedPositions(const MassSpringSystem& previous, MassSpringSy
         const auto at = oldKnot.find(key);
         if (at == oldKnot.end())
             continue;
-        next.position[j] = previous.position[at->second];
+        next.position[j] = inOrigin(previous, at->second, next.origin);
         ++carried;
     }
     return carried;

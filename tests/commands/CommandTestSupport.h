@@ -67,6 +67,7 @@ inline void requireSameSystem(const CompiledSculpture& a, const CompiledSculptur
     const MassSpringSystem& y = b.system;
     REQUIRE(x.knotCount() == y.knotCount());
     REQUIRE(x.barCount() == y.barCount());
+    CHECK(sameBits(x.origin, y.origin));
     std::size_t positionsDiffer = 0, massesDiffer = 0, barsDiffer = 0;
     for (std::size_t k = 0; k < x.knotCount(); ++k) {
         positionsDiffer += !sameBits(x.position[k], y.position[k]);

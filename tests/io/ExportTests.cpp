@@ -78,11 +78,52 @@ TEST_CASE("knots CSV: the header and one line per (piece, row, column), position
         const std::uint32_t k = t.compiled.knotOf(PieceId(std::uint32_t(std::stoul(f[0]))),
                                                   std::stoi(f[1]), std::stoi(f[2]));
         const Vec3 p{number(f[3]), number(f[4]), number(f[5])};
-        CHECK(p == t.compiled.system.position[k]);
+        CHECK(p == t.compiled.system.worldPosition(k));
         CHECK(f[6] == (t.compiled.system.fixed[k] ? "1" : "0"));
         fixed += f[6] == "1";
     }
     CHECK(fixed == 12); // the ring's top row
+}
+
+TEST_CASE("exports in site coordinates: the CSV in the sculpture's, the glb's floats from the "
+          "system's origin, which its root node adds back") {
+    const Vec3 site{512345.678, 5412345.678, 231.5};
+    const Tube near = tubeWithChild(), far = tubeWithChild(12, 5, 1.0, 0.4, site);
+    const MassSpringSystem& sys = far.compiled.system;
+    REQUIRE(sys.origin == Vec3{512346, 5412346, 235}); // the ring's centre, 234.5 m up, rounded
+    const auto dir = outputDir("export-site");
+    exportFile(far.s, far.compiled, {}, dir / "knots.csv");
+    const auto rows = lines(readText(dir / "knots.csv"));
+    REQUIRE(rows.size() == 1 + 12 * 5 + 24 * 3);
+    double worst = 0;
+    for (std::size_t i = 1; i < rows.size(); ++i) {
+        const auto f = fields(rows[i]);
+        const std::uint32_t k = far.compiled.knotOf(PieceId(std::uint32_t(std::stoul(f[0]))),
+                                                    std::stoi(f[1]), std::stoi(f[2]));
+        const Vec3 p{number(f[3]), number(f[4]), number(f[5])};
+        CHECK(p == sys.worldPosition(k));
+        worst = std::max(worst, distance(p - site, near.compiled.system.position[k]));
+    }
+    CHECK(worst < 1e-8); // the same net, moved to the site (rounded there to 9.3e-10 m)
+
+    exportFile(far.s, far.compiled, {}, dir / "net.glb");
+    tinygltf::Model model;
+    tinygltf::TinyGLTF loader;
+    std::string error, warning;
+    REQUIRE(loader.LoadBinaryFromFile(&model, &error, &warning, (dir / "net.glb").string()));
+    REQUIRE(model.nodes.size() == 1);
+    // z up turned to glTF's y up: (x, y, z) -> (x, z, -y), the translation too.
+    CHECK(model.nodes[0].translation == std::vector<double>{512346, 235, -5412346});
+    const tinygltf::Accessor& positions = model.accessors[std::size_t(
+        model.meshes[0].primitives[0].attributes.at("POSITION"))];
+    const tinygltf::BufferView& view = model.bufferViews[std::size_t(positions.bufferView)];
+    const auto* data = reinterpret_cast<const float*>(model.buffers[0].data.data() +
+                                                      view.byteOffset + positions.byteOffset);
+    const Vec3& a = sys.position[sys.barA[0]];
+    CHECK(data[0] == float(a.x));
+    CHECK(data[1] == float(a.y));
+    CHECK(data[2] == float(a.z));
+    CHECK(std::abs(data[0]) < 2); // within the ring's metre of the origin, where floats hold 1e-7
 }
 
 TEST_CASE("OBJ and PLY: knots and bars as lines, or bars as tubes") {

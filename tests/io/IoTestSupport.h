@@ -71,17 +71,20 @@ inline SheetNet sheet(int rows, int columns, double span, double bar, bool soft 
     return t;
 }
 
-/// A closed tube on a ring (regular polygon) rail with a geared child below it (gear 2).
+/// A closed tube on a ring (regular polygon) rail with a geared child below it (gear 2), the ring
+/// 3 m above `site`.
 struct Tube {
     Sculpture s;
     RailId rail;
     PieceId piece, child;
     CompiledSculpture compiled;
 };
-inline Tube tubeWithChild(int columns = 12, int rows = 5, double radius = 1.0, double bar = 0.4) {
+inline Tube tubeWithChild(int columns = 12, int rows = 5, double radius = 1.0, double bar = 0.4,
+                          const Vec3& site = {}) {
     Tube t;
-    t.rail = edit(
-        t.s, [&](Sculpture& s) { return addRail(s, "ring", polygonRail(columns, radius, 3.0)); });
+    t.rail = edit(t.s, [&](Sculpture& s) {
+        return addRail(s, "ring", ringRail(site + Vec3{0, 0, 3}, radius, columns));
+    });
     t.piece = edit(t.s, [&](Sculpture& s) {
         return attachToRail(s, {t.rail, columns, 0, rows, bar, 0, false});
     });

@@ -341,6 +341,44 @@ TEST_CASE("a tube connected to a second rail has its last row fixed on that rail
     CHECK(c.system.hold[c.knotOf(p, 7, 4)].t == Approx(0.5));
 }
 
+TEST_CASE("a sculpture far from (0, 0, 0) is compiled about the whole metre nearest its rails' "
+          "centre, one about it where it stands") {
+    const auto ringAt = [](const Vec3& centre) {
+        Sculpture s;
+        const RailId rail = edit(s, [&](Sculpture& m) {
+            return addRail(m, "ring", ringRail(centre, 2.0, 16));
+        });
+        edit(s, [&](Sculpture& m) { return attachToRail(m, {rail, 16, 0, 6, 0.8, 0, false}); });
+        return s;
+    };
+    const CompiledSculpture near = compileSculpture(ringAt({0, 0, 0}));
+    CHECK(near.system.origin == Vec3{0, 0, 0});
+    // Within 32 m per axis nothing moves: the positions are the sculpture's own, bit for bit.
+    const Sculpture within = ringAt({31.5, -20.25, 12});
+    const CompiledSculpture inPlace = compileSculpture(within);
+    CHECK(inPlace.system.origin == Vec3{0, 0, 0});
+    const Curve& inPlaceRing = within.rails.begin()->second.curve();
+    for (std::size_t k = 0; k < inPlace.system.knotCount(); ++k)
+        if (inPlace.system.fixed[k])
+            CHECK(inPlace.system.position[k] == inPlaceRing.pointAt(inPlace.system.hold[k].t));
+
+    const Vec3 site{-32.5, 512345.678, 1234.4};
+    const Sculpture far = ringAt(site);
+    const CompiledSculpture compiled = compileSculpture(far);
+    const MassSpringSystem& sys = compiled.system;
+    CHECK(sys.origin == Vec3{-33, 512346, 1234}); // -32.5 rounds away from 0
+    const Curve& ring = far.rails.begin()->second.curve();
+    double worst = 0, farthest = 0;
+    for (std::size_t k = 0; k < sys.knotCount(); ++k) {
+        farthest = std::max(farthest, sys.position[k].norm());
+        worst = std::max(worst, distance(sys.worldPosition(k) - site, near.system.position[k]));
+        if (sys.fixed[k]) // held where the rail is, to its coordinates' rounding (1.2e-10 m)
+            CHECK(distance(sys.worldPosition(k), ring.pointAt(sys.hold[k].t)) < 2e-10);
+    }
+    CHECK(farthest < 8); // the ring and the net hanging from it, within a metre of the origin
+    CHECK(worst < 1e-9);   // the net about (0, 0, 0), moved to the site
+}
+
 TEST_CASE("the compiler's bar pairs tell a bar met twice, in either order, past a knot's slots") {
     BarPairs pairs(20);
     // Knot 3's bars to eleven higher knots: the first four in its slots, the rest in the set.

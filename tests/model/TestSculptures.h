@@ -14,6 +14,14 @@ inline CurveSpec polygonRail(int n, double r, double z = 0) {
     return spec;
 }
 
+/// A closed polyline rail: a regular polygon of `n` vertices, radius r, about `centre`.
+inline CurveSpec ringRail(const Vec3& centre, double r, int n) {
+    CurveSpec spec;
+    spec.closed = true;
+    spec.points = circlePoints(centre, r, n);
+    return spec;
+}
+
 /// An open straight rail from a to b.
 inline CurveSpec lineRail(Vec3 a, Vec3 b) {
     CurveSpec spec;

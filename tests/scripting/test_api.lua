@@ -55,6 +55,24 @@ T.case("ns.circle: a ring rail's points", function()
   T.near(rail:info().length, 64 * 2 * 2 * math.sin(math.pi / 64), 1e-9)
 end)
 
+T.case("site coordinates: knots where the rails are, relaxed to the rope's tolerance", function()
+  -- An easting and northing in metres, as a surveyor's drawing has them.
+  local site = {512345.678, 5412345.678, 231.5}
+  local doc = ns.new()
+  local ring = doc:add_rail{points = ns.circle{radius = 1, points = 12, centre = site},
+                            closed = true}
+  local p = doc:attach_to_rail{rail = ring, columns = 12, rows = 8, bar = 0.3}
+  local r = doc:relax{}
+  T.eq(r.converged, true, r.stop_reason .. ", residual " .. r.residual)
+  T.check(r.residual < 1e-6)
+  local knots = doc:knots(p)
+  local held = ring:point(0) -- column 0 of row 0
+  for k = 1, 3 do T.near(knots[1][1][k], held[k], 1e-9) end
+  T.check(knots[8][1][3] < site[3] - 1.5, "the net hangs below the ring, at the site's heights")
+  T.near(knots[8][1][1], site[1], 1.5)
+  T.near(knots[8][1][2], site[2], 1.5)
+end)
+
 T.case("import_rails from CSV", function()
   local doc = ns.new()
   local rails = doc:import_rails(T.data("two_rails.csv"))

@@ -214,7 +214,8 @@ void Renderer::setPositions(const Sculpture& s, const MassSpringSystem& sys, Col
         }
         barColourKey_[b] = colourKey(barColour_[b]);
     }
-    knotPositions_ = sys.position;
+    knotPositions_.resize(sys.knotCount());
+    for (std::size_t k = 0; k < sys.knotCount(); ++k) knotPositions_[k] = sys.worldPosition(k);
     linesStale_ = true;
     uploadKnotDots();
 }
