@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <numeric>
+#include <set>
 #include <unordered_map>
 
 namespace netsculpt {
@@ -362,9 +363,14 @@ std::uint32_t CompiledSculpture::knotOf(PieceId piece, int row, int column) cons
 CompiledSculpture compileSculpture(const Sculpture& s) { return Builder(s).build(); }
 
 Vec3 chooseOrigin(const Sculpture& s) {
+    std::set<RailId> holding; // rails that hold a piece: a drawing's other lines do not count
+    for (const auto& [id, piece] : s.pieces) {
+        if (piece.onRail()) holding.insert(piece.railTop().rail);
+        if (piece.bottom) holding.insert(piece.bottom->rail);
+    }
     Vec3 low{HUGE_VAL, HUGE_VAL, HUGE_VAL}, high = -low;
-    for (const auto& [id, rail] : s.rails)
-        for (const Vec3& p : rail.curve().spec().points) {
+    for (RailId id : holding)
+        for (const Vec3& p : s.rail(id).curve().spec().points) {
             low = {std::min(low.x, p.x), std::min(low.y, p.y), std::min(low.z, p.z)};
             high = {std::max(high.x, p.x), std::max(high.y, p.y), std::max(high.z, p.z)};
         }

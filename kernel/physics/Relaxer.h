@@ -101,8 +101,8 @@ struct RelaxResult {
     /// "converged", "time limit", "step limit", "cancelled", "diverged" (the step size
     /// collapsed; the positions are the last good state, never NaN), "precision limit" (the fast
     /// backend: its steps no longer move any knot by more than a few units in the last place of
-    /// its coordinates, so no nearer equilibrium can be written in doubles; far from the origin
-    /// that floor is above the tolerance) or "stalled" (the Bullet backend).
+    /// its coordinates, so no nearer equilibrium can be written in doubles; far from the system's
+    /// origin that floor is above the tolerance) or "stalled" (the Bullet backend).
     std::string stopReason;
     /// When the run did not converge, where the net has not settled: the (piece, row, column) of
     /// the free knot with the largest residual at the positions returned (its first reference

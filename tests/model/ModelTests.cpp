@@ -351,8 +351,14 @@ TEST_CASE("a sculpture far from (0, 0, 0) is compiled about the whole metre near
         edit(s, [&](Sculpture& m) { return attachToRail(m, {rail, 16, 0, 6, 0.8, 0, false}); });
         return s;
     };
-    const CompiledSculpture near = compileSculpture(ringAt({0, 0, 0}));
+    Sculpture aroundZero = ringAt({0, 0, 0});
+    const CompiledSculpture near = compileSculpture(aroundZero);
     CHECK(near.system.origin == Vec3{0, 0, 0});
+    // A rail that holds nothing (another line of a site drawing) does not move it.
+    edit(aroundZero, [](Sculpture& m) {
+        return addRail(m, "kerb", lineRail({4000, 300, 0}, {4100, 300, 0}));
+    });
+    CHECK(compileSculpture(aroundZero).system.origin == Vec3{0, 0, 0});
     // Within 32 m per axis nothing moves: the positions are the sculpture's own, bit for bit.
     const Sculpture within = ringAt({31.5, -20.25, 12});
     const CompiledSculpture inPlace = compileSculpture(within);

@@ -64,9 +64,9 @@ std::string describeRelaxResult(const RelaxResult& r) {
                      std::to_string(r.unsettledAt->row) + " column " +
                      std::to_string(r.unsettledAt->column);
     if (r.stopReason == "precision limit")
-        described += "; the knots are as near the equilibrium as their coordinates can be written: "
-                     "move the sculpture nearer the origin (0, 0, 0) or relax with a larger "
-                     "tolerance";
+        described += "; the knots are as near the equilibrium as their coordinates can be written "
+                     "this far from the middle of the rails (a sculpture more than about 100 m "
+                     "across): relax with a larger tolerance";
     return described;
 }
 
