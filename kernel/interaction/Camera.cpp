@@ -93,8 +93,10 @@ void Camera::setPreset(ViewPreset preset) {
     }
 }
 
-Mat4 Camera::view() const {
-    const Vec3 f = forward(), r = right(), u = up(), e = eye();
+Mat4 Camera::view() const { return view(Vec3{}); }
+
+Mat4 Camera::view(const Vec3& origin) const {
+    const Vec3 f = forward(), r = right(), u = up(), e = eye() - origin;
     Mat4 v = Mat4::identity();
     v(0, 0) = r.x, v(0, 1) = r.y, v(0, 2) = r.z, v(0, 3) = -r.dot(e);
     v(1, 0) = u.x, v(1, 1) = u.y, v(1, 2) = u.z, v(1, 3) = -u.dot(e);

@@ -81,6 +81,10 @@ class Camera {
     double farPlane() const;
 
     Mat4 view() const;       ///< world -> eye
+    /// (world - origin) -> eye: the view of points given from `origin`, as the studio hands
+    /// floats to OpenGL (a sculpture in site coordinates would lose its knots' places in floats
+    /// of its own coordinates, and the view's translation with them).
+    Mat4 view(const Vec3& origin) const;
     Mat4 projection() const; ///< eye -> clip (OpenGL conventions, depth in [-1, 1])
 
     ScreenPoint project(const Vec3& world) const;

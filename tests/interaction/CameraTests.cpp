@@ -16,7 +16,40 @@ std::array<double, 2> throughMatrices(const Camera& c, const Vec3& p) {
     return {(clip[0] / clip[3] + 1) * 0.5 * c.width(), (1 - clip[1] / clip[3]) * 0.5 * c.height()};
 }
 
+/// Pixel of p through the matrices as the renderer hands them to the GPU: floats, the point given
+/// from `origin` and the view taken from there (Camera::view(origin)).
+std::array<double, 2> throughFloatMatrices(const Camera& c, const Vec3& origin, const Vec3& p) {
+    const std::array<float, 16> m = (c.projection() * c.view(origin)).toFloat();
+    const Vec3 d = p - origin;
+    const float v[4] = {float(d.x), float(d.y), float(d.z), 1.0f};
+    float clip[4];
+    for (int r = 0; r < 4; ++r) {
+        clip[r] = 0;
+        for (int k = 0; k < 4; ++k) clip[r] += m[std::size_t(k * 4 + r)] * v[k];
+    }
+    return {(clip[0] / clip[3] + 1) * 0.5 * c.width(), (1 - clip[1] / clip[3]) * 0.5 * c.height()};
+}
+
 } // namespace
+
+TEST_CASE("camera: a sculpture in site coordinates, drawn in floats from its origin, lands where "
+          "it is",
+          "[camera]") {
+    const Vec3 site{512345.678, 5412345.678, 231.5}, origin{512346, 5412346, 232};
+    Camera c = fixedCamera();
+    c.target = site;
+    double fromOrigin = 0, fromZero = 0;
+    for (const Vec3 offset : {Vec3{1, 2, 3}, Vec3{-2, 0.5, 0}, Vec3{0.3, -1.7, 2.2}}) {
+        const Vec3 p = site + offset;
+        const ScreenPoint sp = c.project(p);
+        REQUIRE(sp.visible);
+        const auto a = throughFloatMatrices(c, origin, p), b = throughFloatMatrices(c, {}, p);
+        fromOrigin = std::max({fromOrigin, std::abs(a[0] - sp.x), std::abs(a[1] - sp.y)});
+        fromZero = std::max({fromZero, std::abs(b[0] - sp.x), std::abs(b[1] - sp.y)});
+    }
+    CHECK(fromOrigin < 0.01); // pixels: 2e-5 measured
+    CHECK(fromZero > 2); // floats of the site's own coordinates, 0.5 m apart there: 12 px measured
+}
 
 TEST_CASE("camera: project agrees with view x projection and rayAt inverts it", "[camera]") {
     Camera c = fixedCamera();

@@ -146,7 +146,13 @@ void Renderer::init() {
     glBindVertexArray(0);
 }
 
+void Renderer::pushFromOrigin(std::vector<float>& out, const Vec3& p) const {
+    const Vec3 d = p - renderOrigin_;
+    out.insert(out.end(), {float(d.x), float(d.y), float(d.z)});
+}
+
 void Renderer::setSculpture(const Sculpture& s, const CompiledSculpture& compiled) {
+    renderOrigin_ = compiled.system.origin;
     // Rails: dense samples as segments for the thick-line shader.
     std::vector<float> rails;
     for (const auto& [id, rail] : s.rails) {
@@ -157,7 +163,7 @@ void Renderer::setSculpture(const Sculpture& s, const CompiledSculpture& compile
             for (int end = 0; end < 2; ++end) {
                 const double t = curve.closed() ? double(i + end) / n : double(i + end) / (n - 1);
                 const Vec3 p = curve.pointAt(curve.closed() ? std::fmod(t, 1.0) : t);
-                rails.insert(rails.end(), {float(p.x), float(p.y), float(p.z)});
+                pushFromOrigin(rails, p);
             }
     }
     glBindBuffer(GL_ARRAY_BUFFER, railVbo_);
@@ -173,12 +179,12 @@ void Renderer::setSculpture(const Sculpture& s, const CompiledSculpture& compile
     const Vec3 c{std::round((lo.x + hi.x) / 2 / step) * step, std::round((lo.y + hi.y) / 2 / step) * step, floorZ};
     std::vector<float> grid;
     const float g = 0.42f;
-    for (double d = -half; d <= half + 1e-9; d += step) {
-        grid.insert(grid.end(), {float(c.x + d), float(c.y - half), float(floorZ), g, g, g});
-        grid.insert(grid.end(), {float(c.x + d), float(c.y + half), float(floorZ), g, g, g});
-        grid.insert(grid.end(), {float(c.x - half), float(c.y + d), float(floorZ), g, g, g});
-        grid.insert(grid.end(), {float(c.x + half), float(c.y + d), float(floorZ), g, g, g});
-    }
+    for (double d = -half; d <= half + 1e-9; d += step)
+        for (const Vec3& p : {Vec3{c.x + d, c.y - half, floorZ}, Vec3{c.x + d, c.y + half, floorZ},
+                              Vec3{c.x - half, c.y + d, floorZ}, Vec3{c.x + half, c.y + d, floorZ}}) {
+            pushFromOrigin(grid, p);
+            grid.insert(grid.end(), {g, g, g});
+        }
     upload(gridVbo_, grid);
     gridVertices_ = GLsizei(grid.size() / 6);
 
@@ -229,9 +235,9 @@ void Renderer::uploadKnotDots() {
     std::vector<float> data;
     data.reserve(knotPositions_.size() * 6);
     for (std::size_t k = 0; k < knotPositions_.size(); ++k) {
-        const Vec3& p = knotPositions_[k];
         const std::array<float, 3>& c = knotColour[k];
-        data.insert(data.end(), {float(p.x), float(p.y), float(p.z), c[0], c[1], c[2]});
+        pushFromOrigin(data, knotPositions_[k]);
+        data.insert(data.end(), {c[0], c[1], c[2]});
     }
     upload(knotVbo_, data);
     knotDots_ = GLsizei(knotPositions_.size());
@@ -270,7 +276,7 @@ void Renderer::uploadNetLines() {
         const NetLine& line = lines_[i];
         const std::array<float, 3>& colour = barColour_[line.bar];
         for (std::uint32_t k : {line.a, line.b}) {
-            const Vec3& p = knotPositions_[k];
+            const Vec3 p = knotPositions_[k] - renderOrigin_;
             *out++ = float(p.x), *out++ = float(p.y), *out++ = float(p.z);
             *out++ = colour[0], *out++ = colour[1], *out++ = colour[2];
         }
@@ -308,10 +314,10 @@ void Renderer::drawBackground() {
 }
 
 namespace {
-void useLines(GLuint program, const Camera& camera, float radius) {
+void useLines(GLuint program, const Camera& camera, const Vec3& origin, float radius) {
     glUseProgram(program);
-    setMatrix(program, "uViewProjection", camera.projection() * camera.view());
-    setMatrix(program, "uView", camera.view());
+    setMatrix(program, "uViewProjection", camera.projection() * camera.view(origin));
+    setMatrix(program, "uView", camera.view(origin));
     glUniform3fv(at(program, "uFogColour"), 1, kFog);
     glUniform2f(at(program, "uFogRange"), float(camera.distance - radius), float(camera.distance + radius));
     glUniform1f(at(program, "uAlpha"), 1.0f);
@@ -323,7 +329,7 @@ void useLines(GLuint program, const Camera& camera, float radius) {
 
 void Renderer::drawGrid(const Camera& camera) {
     if (!gridVertices_) return;
-    useLines(linesProgram_, camera, sceneRadius_);
+    useLines(linesProgram_, camera, renderOrigin_, sceneRadius_);
     glUniform1f(at(linesProgram_, "uAlpha"), 0.35f);
     glEnable(GL_BLEND);
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
@@ -337,7 +343,7 @@ void Renderer::drawGrid(const Camera& camera) {
 void Renderer::drawBars(const Camera& camera, PieceId highlight) {
     updateNetLines(camera);
     if (!barVertices_) return;
-    useLines(linesProgram_, camera, sceneRadius_);
+    useLines(linesProgram_, camera, renderOrigin_, sceneRadius_);
     // The highlighted piece, brighter, in the same pass: its lines are one range of vertices.
     const auto range = pieceRanges_.find(highlight);
     if (highlight && range != pieceRanges_.end()) {
@@ -360,7 +366,7 @@ void Renderer::drawBars(const Camera& camera, PieceId highlight) {
 void Renderer::drawRails(const Camera& camera) {
     if (!railVertices_) return;
     glUseProgram(thickProgram_);
-    setMatrix(thickProgram_, "uViewProjection", camera.projection() * camera.view());
+    setMatrix(thickProgram_, "uViewProjection", camera.projection() * camera.view(renderOrigin_));
     glUniform2f(at(thickProgram_, "uViewport"), float(camera.width()), float(camera.height()));
     glUniform1f(at(thickProgram_, "uWidth"), 7.0f);
     glUniform4fv(at(thickProgram_, "uColour"), 1, kRailColour);
@@ -372,9 +378,12 @@ void Renderer::drawGuides(const Camera& camera, const std::vector<std::pair<Vec3
     if (guides.empty()) return;
     std::vector<float> data;
     for (const auto& [a, b] : guides)
-        for (const Vec3& p : {a, b}) data.insert(data.end(), {float(p.x), float(p.y), float(p.z), 1.0f, 0.85f, 0.3f});
+        for (const Vec3& p : {a, b}) {
+            pushFromOrigin(data, p);
+            data.insert(data.end(), {1.0f, 0.85f, 0.3f});
+        }
     upload(guideVbo_, data);
-    useLines(linesProgram_, camera, sceneRadius_);
+    useLines(linesProgram_, camera, renderOrigin_, sceneRadius_);
     glDisable(GL_DEPTH_TEST);
     glBindVertexArray(guideVao_);
     glDrawArrays(GL_LINES, 0, GLsizei(data.size() / 6));
@@ -385,13 +394,14 @@ void Renderer::drawSpheres(const Camera& camera, const std::vector<Sphere>& sphe
     if (spheres.empty()) return;
     std::vector<float> data;
     data.reserve(spheres.size() * 8);
-    for (const Sphere& s : spheres)
-        data.insert(data.end(), {float(s.centre.x), float(s.centre.y), float(s.centre.z), float(s.radius),
-                                 s.rgba[0], s.rgba[1], s.rgba[2], s.rgba[3]});
+    for (const Sphere& s : spheres) {
+        pushFromOrigin(data, s.centre);
+        data.insert(data.end(), {float(s.radius), s.rgba[0], s.rgba[1], s.rgba[2], s.rgba[3]});
+    }
     glBindBuffer(GL_ARRAY_BUFFER, sphereInstanceVbo_);
     glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(data.size() * sizeof(float)), data.data(), GL_STREAM_DRAW);
     glUseProgram(sphereProgram_);
-    setMatrix(sphereProgram_, "uView", camera.view());
+    setMatrix(sphereProgram_, "uView", camera.view(renderOrigin_));
     setMatrix(sphereProgram_, "uProjection", camera.projection());
     if (blend) {
         glEnable(GL_BLEND);

@@ -85,7 +85,12 @@ class Renderer {
     NetStrands strands_;
     std::vector<std::uint32_t> barA_, barB_;
     std::vector<PieceId> barPiece_;
-    std::vector<Vec3> knotPositions_;
+    std::vector<Vec3> knotPositions_; ///< m, the sculpture's coordinates
+    /// m; every vertex is handed to OpenGL as a float from here (the compiled system's origin),
+    /// and the view matrices are taken from here too (Camera::view(origin)).
+    Vec3 renderOrigin_;
+    /// p - renderOrigin_ as floats, appended to `out`.
+    void pushFromOrigin(std::vector<float>& out, const Vec3& p) const;
     std::vector<std::array<float, 3>> barColour_;
     std::vector<std::uint32_t> barColourKey_; ///< the colour quantized: lines never mix two keys
     std::vector<NetLine> lines_;
