@@ -181,7 +181,8 @@ void Renderer::setSculpture(const Sculpture& s, const CompiledSculpture& compile
     const float g = 0.42f;
     for (double d = -half; d <= half + 1e-9; d += step)
         for (const Vec3& p : {Vec3{c.x + d, c.y - half, floorZ}, Vec3{c.x + d, c.y + half, floorZ},
-                              Vec3{c.x - half, c.y + d, floorZ}, Vec3{c.x + half, c.y + d, floorZ}}) {
+                              Vec3{c.x - half, c.y + d, floorZ},
+                              Vec3{c.x + half, c.y + d, floorZ}}) {
             pushFromOrigin(grid, p);
             grid.insert(grid.end(), {g, g, g});
         }
