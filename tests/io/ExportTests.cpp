@@ -50,6 +50,24 @@ double number(const std::string& text) {
     return value;
 }
 
+/// The float vertices of a glb's first primitive: x, y, z of its first vertex at [0], [1], [2].
+const float* firstPrimitivePositions(const tinygltf::Model& model) {
+    const tinygltf::Accessor& positions = model.accessors[std::size_t(
+        model.meshes.at(0).primitives.at(0).attributes.at("POSITION"))];
+    const tinygltf::BufferView& view = model.bufferViews[std::size_t(positions.bufferView)];
+    return reinterpret_cast<const float*>(model.buffers[0].data.data() + view.byteOffset +
+                                          positions.byteOffset);
+}
+
+/// Checks that the first bar's first end in a glb is knot barA[0] of `sys`, from its origin.
+void checkFirstBarEnd(const tinygltf::Model& model, const MassSpringSystem& sys) {
+    const float* data = firstPrimitivePositions(model);
+    const Vec3& a = sys.position[sys.barA[0]];
+    CHECK(data[0] == float(a.x));
+    CHECK(data[1] == float(a.y));
+    CHECK(data[2] == float(a.z));
+}
+
 std::size_t countPrefix(const std::string& text, const std::string& prefix) {
     std::size_t n = 0;
     for (const auto& line : lines(text))
@@ -114,16 +132,9 @@ TEST_CASE("exports in site coordinates: the CSV in the sculpture's, the glb's fl
     REQUIRE(model.nodes.size() == 1);
     // z up turned to glTF's y up: (x, y, z) -> (x, z, -y), the translation too.
     CHECK(model.nodes[0].translation == std::vector<double>{512346, 235, -5412346});
-    const tinygltf::Accessor& positions = model.accessors[std::size_t(
-        model.meshes[0].primitives[0].attributes.at("POSITION"))];
-    const tinygltf::BufferView& view = model.bufferViews[std::size_t(positions.bufferView)];
-    const auto* data = reinterpret_cast<const float*>(model.buffers[0].data.data() +
-                                                      view.byteOffset + positions.byteOffset);
-    const Vec3& a = sys.position[sys.barA[0]];
-    CHECK(data[0] == float(a.x));
-    CHECK(data[1] == float(a.y));
-    CHECK(data[2] == float(a.z));
-    CHECK(std::abs(data[0]) < 2); // within the ring's metre of the origin, where floats hold 1e-7
+    checkFirstBarEnd(model, sys);
+    // within the ring's metre of the origin, where floats hold 1e-7 m
+    CHECK(std::abs(firstPrimitivePositions(model)[0]) < 2);
 }
 
 TEST_CASE("OBJ and PLY: knots and bars as lines, or bars as tubes") {
@@ -185,14 +196,7 @@ TEST_CASE("glb loads back with tinygltf: two vertices per bar, colours, tension,
     CHECK(positions.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT);
     CHECK(model.accessors[std::size_t(net.attributes.at("COLOR_0"))].count == 2 * sys.barCount());
     CHECK(model.accessors[std::size_t(net.attributes.at("_TENSION"))].count == 2 * sys.barCount());
-    // The first bar's first end is where the knot is (as a float).
-    const tinygltf::BufferView& view = model.bufferViews[std::size_t(positions.bufferView)];
-    const auto* data = reinterpret_cast<const float*>(model.buffers[0].data.data() +
-                                                      view.byteOffset + positions.byteOffset);
-    const Vec3& a = sys.position[sys.barA[0]];
-    CHECK(data[0] == float(a.x));
-    CHECK(data[1] == float(a.y));
-    CHECK(data[2] == float(a.z));
+    checkFirstBarEnd(model, sys); // the first bar's first end is where the knot is (a float)
     const tinygltf::Primitive& rails = model.meshes[0].primitives[1];
     CHECK(model.accessors[std::size_t(rails.attributes.at("POSITION"))].count ==
           2 * 12); // the ring's 12 segments
