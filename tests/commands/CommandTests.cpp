@@ -604,3 +604,39 @@ TEST_CASE("a split through the document changes no knot, bar or rest length") {
     doc.undo();
     requireSameSystem(doc.compiled(), before);
 }
+
+TEST_CASE("a relaxed shape carried across an edit that moves the system's origin stays where it "
+          "hung") {
+    // A ring at a site 700 m east, relaxed; then a second ring 60 m further east holds a new
+    // piece, so the middle of the rails that hold pieces, and the origin with it, moves by 30 m.
+    const Vec3 site{700, 0, 10};
+    Document doc;
+    CurveSpec ring;
+    ring.closed = true;
+    ring.points = circlePoints(site, 1.0, 12);
+    doc.execute(AddRailCommand{"ring", ring});
+    doc.execute(attach(1, 12, 8, 0.3));
+    DocumentRelaxOptions options;
+    REQUIRE(doc.relax(options).converged);
+    const MassSpringSystem before = doc.compiled().system;
+    CHECK(before.origin == Vec3{700, 0, 0}); // 10 m up is within 32 m: z stays
+
+    ring.points = circlePoints(site + Vec3{60, 0, 0}, 1.0, 12);
+    doc.execute(AddRailCommand{"far ring", ring});
+    doc.execute(attach(2, 12, 8, 0.3));
+    const MassSpringSystem& after = doc.compiled().system;
+    CHECK(after.origin == Vec3{730, 0, 0});
+    double worst = 0;
+    for (int r = 0; r < 8; ++r)
+        for (int c = 0; c < 12; ++c) {
+            const std::uint32_t was = doc.compiled().knotOf(PieceId(1), r, c); // the same order
+            worst = std::max(worst, distance(after.worldPosition(was), before.worldPosition(was)));
+        }
+    CHECK(worst < 1e-14); // moved by 30 m exactly, rounded once to 3.6e-15 m
+    // The first piece is still balanced: only the new one has to settle.
+    const RelaxResult settled = doc.relax(options);
+    INFO(settled.stopReason << ", residual " << settled.residual << " after " << settled.steps);
+    REQUIRE(settled.converged);
+    const std::uint32_t k = doc.compiled().knotOf(PieceId(1), 7, 0);
+    CHECK(distance(doc.compiled().system.worldPosition(k), before.worldPosition(k)) < 1e-7);
+}
