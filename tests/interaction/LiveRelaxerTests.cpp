@@ -315,6 +315,31 @@ TEST_CASE("live relaxer: a shape is carried on to the same knots only: rows adde
     CHECK(heldAtTheSamePlaces(base, after(SetRowsCommand{scene.net, 8})));
 }
 
+TEST_CASE("live relaxer: a shape carried to a system measured from another origin keeps its "
+          "place in the sculpture",
+          "[live]") {
+    Scene scene;
+    const MassSpringSystem base = scene.doc.compiled().system;
+    // The same knots measured from 30 m east (a rail added further out moves the origin so).
+    MassSpringSystem moved = base;
+    moved.origin = base.origin + Vec3{30, 0, 0};
+    for (Vec3& p : moved.position)
+        p -= Vec3{30, 0, 0};
+    CHECK(heldAtTheSamePlaces(base, moved));
+    CHECK(sameKnotsWhereMatched(base, moved));
+    for (std::size_t j = 0; j < moved.knotCount(); ++j)
+        if (!moved.fixed[j]) moved.position[j] = Vec3{}; // to be carried
+    REQUIRE(carryMatchedPositions(base, moved) > 0);
+    double worst = 0;
+    for (std::size_t j = 0; j < moved.knotCount(); ++j)
+        worst = std::max(worst, distance(moved.worldPosition(j), base.worldPosition(j)));
+    CHECK(worst < 1e-14); // 30 m exactly, rounded once
+    // Held 30 m from where they were: not the same places.
+    MassSpringSystem shifted = base;
+    shifted.origin = base.origin + Vec3{30, 0, 0};
+    CHECK_FALSE(heldAtTheSamePlaces(base, shifted));
+}
+
 namespace {
 
 /// Every state a fast-backend LiveRelaxer made with options() publishes, in order.
