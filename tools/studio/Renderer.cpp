@@ -170,10 +170,12 @@ void Renderer::setSculpture(const Sculpture& s, const CompiledSculpture& compile
     glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(rails.size() * sizeof(float)), rails.data(), GL_STATIC_DRAW);
     railVertices_ = GLsizei(rails.size() / 3);
 
-    // Ground grid at z = 0, or just under the lowest point when the sculpture goes below it.
+    // Ground grid at z = 0, or just under the lowest point when the sculpture goes below it or
+    // stands at a site's heights (tens of metres or more from z = 0: its origin is off it).
     const auto [lo, hi] = sceneBounds(s, compiled);
     sceneRadius_ = float(std::max(0.5 * (hi - lo).norm(), 0.5));
-    const double floorZ = std::min(0.0, lo.z - 0.05);
+    const bool siteHeights = compiled.system.origin.z != 0;
+    const double floorZ = siteHeights ? lo.z - 0.05 : std::min(0.0, lo.z - 0.05);
     const double step = sceneRadius_ > 6 ? 1.0 : 0.5;
     const double half = std::ceil(std::max({hi.x - lo.x, hi.y - lo.y, 2.0}) * 0.75 / step) * step;
     const Vec3 c{std::round((lo.x + hi.x) / 2 / step) * step, std::round((lo.y + hi.y) / 2 / step) * step, floorZ};
