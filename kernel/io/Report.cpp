@@ -187,6 +187,7 @@ nlohmann::json buildReport(const Sculpture& s, const CompiledSculpture& c,
                               {"row", ref.row},
                               {"column", ref.column},
                               {"t", sys.hold[k].t},
+                              {"position", vec(sys.worldPosition(k))},
                               {"reaction", vec(reaction[k])},
                               {"magnitude", reaction[k].norm()}});
         }

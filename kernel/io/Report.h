@@ -65,7 +65,8 @@ std::string reportMarkdown(const nlohmann::json& report);
 /// Per-piece table as CSV (id, name, rows, columns, closed, knots, bars, rope_length, mass,
 /// bar_axis, bar_min, bar_max).
 std::string reportPiecesCsv(const nlohmann::json& report);
-/// Per-attachment-point table as CSV (rail, piece, row, column, t, fx, fy, fz, magnitude).
+/// Per-attachment-point table as CSV (rail, piece, row, column, t, x, y, z: where the point is in
+/// the sculpture's coordinates, fx, fy, fz, magnitude).
 std::string reportAttachmentsCsv(const nlohmann::json& report);
 
 } // namespace netsculpt

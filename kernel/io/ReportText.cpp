@@ -165,11 +165,13 @@ std::string reportPiecesCsv(const json& r) {
 }
 
 std::string reportAttachmentsCsv(const json& r) {
-    std::string csv = "rail,piece,row,column,t,fx,fy,fz,magnitude\n";
+    std::string csv = "rail,piece,row,column,t,x,y,z,fx,fy,fz,magnitude\n";
     for (const json& rail : r["rails"])
         for (const json& p : rail["points"])
             csv += num(rail["id"]) + "," + num(p["piece"]) + "," + num(p["row"]) + "," +
-                   num(p["column"]) + "," + num(p["t"]) + "," + num(p["reaction"]["x"]) + "," +
+                   num(p["column"]) + "," + num(p["t"]) + "," + num(p["position"]["x"]) + "," +
+                   num(p["position"]["y"]) + "," + num(p["position"]["z"]) + "," +
+                   num(p["reaction"]["x"]) + "," +
                    num(p["reaction"]["y"]) + "," + num(p["reaction"]["z"]) + "," +
                    num(p["magnitude"]) + "\n";
     return csv;

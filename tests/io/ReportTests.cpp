@@ -82,6 +82,11 @@ TEST_CASE("report of a single open sheet: counts, rope length and mass by hand")
         CHECK(rail["points"][std::size_t(c)]["column"] == c);
         CHECK(rail["points"][std::size_t(c)]["row"] == 0);
         CHECK(rail["points"][std::size_t(c)]["t"].get<double>() == Approx(c / 4.0).margin(1e-15));
+        // where the load acts: on the rail from (0, 0, 0) to (1, 0, 0), at t
+        const json& at = rail["points"][std::size_t(c)]["position"];
+        CHECK(at["x"].get<double>() == Approx(c / 4.0).margin(1e-15));
+        CHECK(at["y"].get<double>() == 0);
+        CHECK(at["z"].get<double>() == 0);
     }
 }
 
@@ -198,7 +203,7 @@ TEST_CASE("report as Markdown and CSV tables") {
     CHECK_THAT(pieces, Contains("\n1,piece 1,4,3,0,12,15,"));
     CHECK_THAT(pieces, Contains(",column,0.3,0.3\n"));
     const std::string points = reportAttachmentsCsv(r);
-    CHECK(points.rfind("rail,piece,row,column,t,fx,fy,fz,magnitude\n", 0) == 0);
+    CHECK(points.rfind("rail,piece,row,column,t,x,y,z,fx,fy,fz,magnitude\n", 0) == 0);
     CHECK(lineCount(points) == 1 + 3);
     CHECK_THAT(points, Contains("\n1,1,0,2,1,"));
 }
