@@ -70,7 +70,8 @@ class Document {
     const RelaxResult& lastRelax() const;
     bool isRelaxed() const; ///< a relaxation converged since the last change
     /// Takes positions relaxed elsewhere (the studio's background relaxation) as the current
-    /// shape: the next edit warm-starts from them, as after relax(). `converged`: they are an
+    /// shape, measured from compiled().system.origin as that system's are: the next edit
+    /// warm-starts from them, as after relax(). `converged`: they are an
     /// equilibrium at the material's stiffness. UserError when the count is not the knot count.
     void adoptPositions(std::vector<Vec3> positions, bool converged);
 

@@ -72,8 +72,9 @@ enum class LivePhase { Idle, Preview, Refine };
 struct LiveState {
     std::uint64_t generation = 0; ///< the tag given to preview()/refine(): which document state
     std::uint64_t sequence = 0;   ///< increases with every publication
-    /// m, one per knot of the system it was given; empty in a refine's progress reports (the
-    /// positions are those of the last state that had them).
+    /// m, from the origin of the system it was given (MassSpringSystem::origin), one per knot;
+    /// empty in a refine's progress reports (the positions are those of the last state that had
+    /// them).
     std::vector<Vec3> positions;
     LivePhase phase = LivePhase::Idle;
     bool running = false;         ///< more publications of this run will follow

@@ -368,6 +368,8 @@ Vec3 chooseOrigin(const Sculpture& s) {
         if (piece.onRail()) holding.insert(piece.railTop().rail);
         if (piece.bottom) holding.insert(piece.bottom->rail);
     }
+    if (holding.empty()) // no net yet: the rails alone, as the studio draws them
+        for (const auto& [id, rail] : s.rails) holding.insert(id);
     Vec3 low{HUGE_VAL, HUGE_VAL, HUGE_VAL}, high = -low;
     for (RailId id : holding)
         for (const Vec3& p : s.rail(id).curve().spec().points) {

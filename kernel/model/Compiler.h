@@ -38,7 +38,8 @@ constexpr double kOriginFreeRadius = 32;
 /// The system origin of `s` (MassSpringSystem::origin): per axis, the whole metre nearest the
 /// centre of the points of the rails that hold pieces, where that centre is more than
 /// kOriginFreeRadius from 0, else 0. Whole metres, so that moving a shape between two systems'
-/// origins is exact; rails that hold nothing (a site drawing's other lines) do not move it.
+/// origins is exact; rails that hold nothing (a site drawing's other lines) do not move it, unless
+/// none holds a piece yet (then all the rails place it: the studio draws them from it).
 Vec3 chooseOrigin(const Sculpture& s);
 
 /// Rail position t of column c of a rail edge.

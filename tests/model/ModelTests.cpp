@@ -359,6 +359,12 @@ TEST_CASE("a sculpture far from (0, 0, 0) is compiled about the whole metre near
         return addRail(m, "kerb", lineRail({4000, 300, 0}, {4100, 300, 0}));
     });
     CHECK(compileSculpture(aroundZero).system.origin == Vec3{0, 0, 0});
+    // Before any net is attached, the rails alone place it (the studio draws them from it).
+    Sculpture railsOnly;
+    edit(railsOnly, [](Sculpture& m) {
+        return addRail(m, "kerb", lineRail({4000, 300, 0}, {4100, 300, 0}));
+    });
+    CHECK(chooseOrigin(railsOnly) == Vec3{4050, 300, 0});
     // Within 32 m per axis nothing moves: the positions are the sculpture's own, bit for bit.
     const Sculpture within = ringAt({31.5, -20.25, 12});
     const CompiledSculpture inPlace = compileSculpture(within);

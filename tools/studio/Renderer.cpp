@@ -171,10 +171,12 @@ void Renderer::setSculpture(const Sculpture& s, const CompiledSculpture& compile
     railVertices_ = GLsizei(rails.size() / 3);
 
     // Ground grid at z = 0, or just under the lowest point when the sculpture goes below it or
-    // stands at a site's heights (tens of metres or more from z = 0: its origin is off it).
+    // stands more than ten times its own size above it (a site's heights above sea level: a
+    // floor that far down is not the sculpture's; an atrium's floor a few storeys down is).
     const auto [lo, hi] = sceneBounds(s, compiled);
     sceneRadius_ = float(std::max(0.5 * (hi - lo).norm(), 0.5));
-    const bool siteHeights = compiled.system.origin.z != 0;
+    const double size = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1.0});
+    const bool siteHeights = lo.z > 10 * size;
     const double floorZ = siteHeights ? lo.z - 0.05 : std::min(0.0, lo.z - 0.05);
     const double step = sceneRadius_ > 6 ? 1.0 : 0.5;
     const double half = std::ceil(std::max({hi.x - lo.x, hi.y - lo.y, 2.0}) * 0.75 / step) * step;
@@ -253,7 +255,8 @@ void Renderer::setBarMergeTolerance(double pixels) {
 
 void Renderer::updateNetLines(const Camera& camera) {
     const bool merging = barMergeTolerance_ > 0;
-    const std::array<float, 16> viewProjection = (camera.projection() * camera.view()).toFloat();
+    const std::array<float, 16> viewProjection =
+        (camera.projection() * camera.view(renderOrigin_)).toFloat();
     const bool cameraMoved = viewProjection != linesViewProjection_ || camera.width() != linesWidth_ ||
                              camera.height() != linesHeight_;
     if (!linesStale_ && !(merging && cameraMoved)) return;

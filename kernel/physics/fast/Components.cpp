@@ -87,6 +87,7 @@ Part extractPart(const MassSpringSystem& system, const std::vector<std::uint32_t
 
     MassSpringSystem& p = part.system;
     p.gravity = s.gravity;
+    p.origin = s.origin;
     p.refStart.push_back(0);
     for (std::size_t k = 0; k < part.knotOf.size(); ++k) {
         const std::uint32_t j = part.knotOf[k];
