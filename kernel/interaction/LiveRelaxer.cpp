@@ -205,8 +205,8 @@ LiveRelaxer::ResidualCheck& LiveRelaxer::residualCheckFor(const MassSpringSystem
 bool LiveRelaxer::extrapolate(const MassSpringSystem& previous, MassSpringSystem& next, std::vector<double>& restChange) {
     // Only an edit of the shape the last run ended at that keeps the bars (masses and k_s = EA / l
     // follow the rest lengths; an edit of something else as well is caught by the residual test).
-    if (previous.barA != next.barA || previous.barB != next.barB || previous.origin != next.origin ||
-        previous.position != next.position)
+    if (previous.barA != next.barA || previous.barB != next.barB ||
+        previous.origin != next.origin || previous.position != next.position)
         return false;
     restChange.resize(next.barCount());
     for (std::size_t b = 0; b < next.barCount(); ++b) restChange[b] = next.restLength[b] - previous.restLength[b];

@@ -112,6 +112,16 @@ inline AttachToRailCommand attach(std::uint32_t rail, int columns, int rows, dou
     return AttachToRailCommand{a};
 }
 
+/// Adds a ring rail of 12 points, radius 1 m, about `centre` and hangs a tube of 12 columns and 8
+/// rows of 0.3 m bars (the default rope) from it: rail `rail`, the piece after it.
+inline void addRingWithTube(Document& doc, const Vec3& centre, std::uint32_t rail) {
+    CurveSpec ring;
+    ring.closed = true;
+    ring.points = circlePoints(centre, 1.0, 12);
+    doc.execute(AddRailCommand{"ring " + std::to_string(rail), ring});
+    doc.execute(attach(rail, 12, 8, 0.3));
+}
+
 inline AttachToPieceCommand hang(std::uint32_t parent, Gear gear, int rows, double bar) {
     AttachToPieceArgs a;
     a.parent = PieceId(parent);

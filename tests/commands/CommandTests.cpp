@@ -611,19 +611,13 @@ TEST_CASE("a relaxed shape carried across an edit that moves the system's origin
     // piece, so the middle of the rails that hold pieces, and the origin with it, moves by 30 m.
     const Vec3 site{700, 0, 10};
     Document doc;
-    CurveSpec ring;
-    ring.closed = true;
-    ring.points = circlePoints(site, 1.0, 12);
-    doc.execute(AddRailCommand{"ring", ring});
-    doc.execute(attach(1, 12, 8, 0.3));
+    addRingWithTube(doc, site, 1);
     DocumentRelaxOptions options;
     REQUIRE(doc.relax(options).converged);
     const MassSpringSystem before = doc.compiled().system;
     CHECK(before.origin == Vec3{700, 0, 0}); // 10 m up is within 32 m: z stays
 
-    ring.points = circlePoints(site + Vec3{60, 0, 0}, 1.0, 12);
-    doc.execute(AddRailCommand{"far ring", ring});
-    doc.execute(attach(2, 12, 8, 0.3));
+    addRingWithTube(doc, site + Vec3{60, 0, 0}, 2);
     const MassSpringSystem& after = doc.compiled().system;
     CHECK(after.origin == Vec3{730, 0, 0});
     double worst = 0;

@@ -549,11 +549,7 @@ TEST_CASE("a sculpture in site coordinates relaxes to the tolerance, and its sna
     TempDir dir;
     const Vec3 site{512345.678, 5412345.678, 231.5};
     Document doc;
-    CurveSpec ring;
-    ring.closed = true;
-    ring.points = circlePoints(site, 1.0, 12);
-    doc.execute(AddRailCommand{"ring", ring});
-    doc.execute(attach(1, 12, 8, 0.3));
+    addRingWithTube(doc, site, 1);
     const DocumentRelaxOptions options;
     const RelaxResult relaxed = doc.relax(options);
     INFO(relaxed.stopReason << ", residual " << relaxed.residual);
