@@ -150,6 +150,37 @@ TEST_CASE("default.lua: the Quick start sculpture", "[gallery]") {
     CHECK(readKnots(out / "knots.csv").size() == 48 * 20 + 96 * 16);
 }
 
+TEST_CASE("site.lua: a net in a surveyor's coordinates relaxes, and its files keep them",
+          "[gallery]") {
+    const fs::path out = runGallery("site.lua");
+    const double east = 691050, north = 5335980, ground = 519.5; // as the script has them
+    const std::vector<Knot> knots = readKnots(out / "knots.csv");
+    REQUIRE(knots.size() == 40 * 48);
+    int held = 0;
+    for (const Knot& k : knots) {
+        CHECK(k.x > east - 1);
+        CHECK(k.x < east + 9);
+        CHECK(k.y > north - 1);
+        CHECK(k.y < north + 8);
+        CHECK(k.z > ground);
+        CHECK(k.z < ground + 8 + 1e-9);
+        held += k.fixed;
+    }
+    CHECK(held == 2 * 40); // the top row on the upper beam, the last on the lower one
+    const json report = readJson(out / "report.json");
+    REQUIRE(report["relaxed"] == true);
+    checkHangsAsRope(report);
+    CHECK(report["force_balance"]["relative_difference"].get<double>() < 1e-9);
+    // Where the loads act: the upper beam's attachments 8 m above the ground, along the beam.
+    const json& upper = report["rails"][0];
+    REQUIRE(upper["points"].size() == 40);
+    for (const json& p : upper["points"]) {
+        CHECK(p["position"]["z"].get<double>() == Approx(ground + 8).margin(1e-9));
+        CHECK(p["position"]["x"].get<double>() >= east - 1e-9);
+        CHECK(p["position"]["x"].get<double>() <= east + 8 + 1e-9);
+    }
+}
+
 TEST_CASE("README: the Lua example runs, and its net hangs from its two rails", "[gallery]") {
     const fs::path out = freshFolder("readme-example");
     {
