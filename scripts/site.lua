@@ -6,8 +6,9 @@
 --
 --   build/tools/netsculpt run scripts/site.lua --out out/site
 --
--- Writes knots.csv, report.json, report.md (the rails' loads, each attachment with its easting,
--- northing and height), sculpture.glb and sculpture.png. NETSCULPT_QUICK=1 caps the relaxation.
+-- Writes knots.csv, report.json (the rails' loads, each attachment with its easting, northing and
+-- height; `netsculpt report --csv attachments` prints them as a table), report.md (the summary),
+-- sculpture.glb and sculpture.png. NETSCULPT_QUICK=1 caps the relaxation.
 
 local ns = require "netsculpt"
 local quick = os.getenv("NETSCULPT_QUICK") == "1" or (arg ~= nil and arg[1] == "--quick")

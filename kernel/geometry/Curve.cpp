@@ -441,6 +441,23 @@ CurveGeometry splineGeometry(const CurveSpec& spec) {
     return g;
 }
 
+// Whether a closed polyline's distinct vertices leave the line through its first vertex and the
+// one farthest from it by more than 1e-9 of that distance: a loop of points on one line goes
+// there and back, enclosing nothing (its "length" twice the line's).
+bool enclosesAnything(const std::vector<Vec3>& vertices) {
+    const Vec3& a = vertices.front();
+    Vec3 far = a;
+    for (const Vec3& v : vertices)
+        if (distance(v, a) > distance(far, a)) far = v;
+    const double span = distance(far, a);
+    const Vec3 along = (far - a) / span;
+    for (const Vec3& v : vertices) {
+        const Vec3 d = v - a;
+        if ((d - along * d.dot(along)).norm() > 1e-9 * span) return true;
+    }
+    return false;
+}
+
 // Distance 0 (not ==) decides a duplicate, so a segment too short to measure is dropped too.
 std::vector<Vec3> polylineVertices(const CurveSpec& spec) {
     std::vector<Vec3> vertices;
@@ -452,6 +469,10 @@ std::vector<Vec3> polylineVertices(const CurveSpec& spec) {
     if (vertices.size() < 2)
         fail("a polyline needs at least 2 distinct points, got " + num(vertices.size()) +
              " distinct among " + num(spec.points.size()) + " points");
+    if (spec.closed && !enclosesAnything(vertices))
+        fail("a closed polyline needs at least 3 distinct points not on one line (a loop that "
+             "encloses something), got " + num(vertices.size()) + " distinct among " +
+             num(spec.points.size()) + " points, all on one line");
     if (spec.closed)
         vertices.push_back(vertices.front());
     return vertices;

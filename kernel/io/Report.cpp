@@ -201,7 +201,7 @@ nlohmann::json buildReport(const Sculpture& s, const CompiledSculpture& c,
                          {"max_reaction", largest},
                          {"points", std::move(points)}});
     }
-    const Vec3 expected = s.gravity * -mass;
+    const Vec3 expected = Vec3{} - s.gravity * mass; // 0 - 0 is +0: no "-0" printed
     const Vec3 difference = reactionSum - expected;
     const double relative = weight > 0 ? difference.norm() / weight : 0.0;
     report["force_balance"] = {

@@ -381,6 +381,18 @@ TEST_CASE("bad curve input throws UserError naming the value", "[curve][errors]"
         REQUIRE_THROWS_WITH(Curve::build(polyline({a, {0, 0, 1e-320}}, true)),
                             Contains("got 1 distinct"));
     }
+    SECTION("a closed polyline that encloses nothing") {
+        // There and back along one line: a "loop" of twice the line's length.
+        REQUIRE_THROWS_WITH(Curve::build(polyline({{0, 0, 5}, {4, 0, 5}, {0, 0, 5}}, true)),
+                            Contains("a closed polyline needs at least 3 distinct points not on "
+                                     "one line") &&
+                                Contains("got 2 distinct among 3 points"));
+        REQUIRE_THROWS_WITH(Curve::build(polyline({{0, 0, 1}, {1, 0, 1}, {3, 0, 1}}, true)),
+                            Contains("got 3 distinct among 3 points, all on one line"));
+        // Open, the same points are a fine rail; closed, a thin triangle is a loop.
+        CHECK(Curve::build(polyline({{0, 0, 1}, {1, 0, 1}, {3, 0, 1}})).length() == 3);
+        CHECK(Curve::build(polyline({{0, 0, 1}, {1, 1e-6, 1}, {3, 0, 1}}, true)).length() > 6);
+    }
     SECTION("non-finite coordinates") {
         REQUIRE_THROWS_WITH(Curve::build(polyline({a, {0, nan, 0}})),
                             Contains("rail: point 1 has a non-finite coordinate (nan)"));

@@ -192,6 +192,7 @@ TEST_CASE("report as Markdown and CSV tables") {
     CHECK_THAT(md, Contains("| bars | 15 |"));
     CHECK_THAT(md, Contains("| rope length | 4.5 m |"));
     CHECK_THAT(md, Contains("## Force balance"));
+    CHECK_THAT(md, Contains("against the weight (0, 0, ")); // not "-0": the weight to carry
     CHECK_THAT(md, Contains("| 1 | piece 1 | 4 x 3 | no | 12 | 15 | 4.5 |"));
     CHECK_THAT(md, Contains("| 1 | bar | 0.8 | no | 3 |"));
 
