@@ -132,6 +132,8 @@ JournalEntry decodeEntryJson(std::string_view text) {
 
 JournalContents parseJournal(std::string_view text, const std::string& name) {
     JournalContents out;
+    // A line may end in "\r\n" (a journal checked out with Windows line endings): the "\r" is
+    // not part of the line.
     // ---- header ----
     const std::size_t headerEnd = text.find('\n');
     if (headerEnd == std::string_view::npos) {
@@ -143,7 +145,7 @@ JournalContents parseJournal(std::string_view text, const std::string& name) {
         }
         throw UserError(name + " is not a netsculpt journal (its first line is " + excerpt(text) + ")");
     }
-    const std::string_view header = text.substr(0, headerEnd);
+    const std::string_view header = withoutCarriageReturn(text.substr(0, headerEnd));
     const std::string prefix = std::string(kMagic) + " ";
     if (header.substr(0, prefix.size()) != prefix)
         throw UserError(name + " is not a netsculpt journal (its first line is " + excerpt(header) +
@@ -167,7 +169,8 @@ JournalContents parseJournal(std::string_view text, const std::string& name) {
         ++line;
         const std::size_t end = text.find('\n', pos);
         const bool torn = end == std::string_view::npos;
-        const std::string_view body = text.substr(pos, torn ? std::string_view::npos : end - pos);
+        const std::string_view body =
+            withoutCarriageReturn(text.substr(pos, torn ? std::string_view::npos : end - pos));
         const bool last = torn || end + 1 == text.size();
         const std::string where = name + " line " + std::to_string(line);
         if (torn) {

@@ -37,6 +37,11 @@ std::uint32_t crc32(std::string_view bytes);
 
 /// "netsculpt-journal 1\n".
 std::string journalHeader();
+/// `line` without a trailing "\r": journals and snapshots are read with either line ending
+/// (a file checked out with Windows line endings), and written with "\n".
+inline std::string_view withoutCarriageReturn(std::string_view line) {
+    return line.ends_with('\r') ? line.substr(0, line.size() - 1) : line;
+}
 /// The entry's JSON object, one line, no checksum ({"seq":…,"cmd":…,"args":{…},…}).
 /// Throws UserError when an argument is not finite (such a command never validates anyway).
 std::string entryJson(const JournalEntry& entry);

@@ -50,7 +50,7 @@ std::string encodeSnapshot(const Sculpture& model, const std::vector<JournalEntr
 
 SnapshotData decodeSnapshot(std::string_view text, const std::string& name) {
     const std::size_t headerEnd = text.find('\n');
-    const std::string_view header = text.substr(0, headerEnd);
+    const std::string_view header = withoutCarriageReturn(text.substr(0, headerEnd));
     const std::string prefix = std::string(kSnapshotMagic) + " ";
     if (headerEnd == std::string_view::npos || header.substr(0, prefix.size()) != prefix)
         throw UserError(name + " is not a netsculpt snapshot (no \"" + prefix + "1\" line)");

@@ -588,3 +588,35 @@ TEST_CASE("a sculpture in site coordinates relaxes to the tolerance, and its sna
     CHECK(worst > 0);       // rounded to the site's coordinates on the way ...
     CHECK(worst < 1e-9);    // ... by at most half a unit in their last place (4.7e-10 m)
 }
+
+TEST_CASE("a journal or a snapshot with Windows line endings opens as the same sculpture") {
+    // A file checked out through git with CRLF line endings: every line ends in "\r\n".
+    TempDir dir;
+    Document doc = journaledDocument(dir / "j.netj");
+    doc.saveSnapshot(dir / "snap.nets");
+    const auto withCrlf = [](const std::string& bytes) {
+        std::string out;
+        for (char c : bytes) out += c == '\n' ? std::string("\r\n") : std::string(1, c);
+        return out;
+    };
+    writeBytes(dir / "crlf.netj", withCrlf(readBytes(dir / "j.netj")));
+    writeBytes(dir / "crlf.nets", withCrlf(readBytes(dir / "snap.nets")));
+    std::vector<std::string> warnings;
+    CHECK(Document::open(dir / "crlf.netj", &warnings).hash() == doc.hash());
+    CHECK(warnings.empty());
+    const Document snapshot = Document::load(dir / "crlf.nets", &warnings);
+    CHECK(warnings.empty());
+    CHECK(snapshot.hash() == doc.hash());
+    requireSameSystem(snapshot.compiled(), doc.compiled());
+    // Opened, it keeps appending: "\n" lines after the "\r\n" ones, and both read back.
+    std::uint64_t edited = 0;
+    {
+        Document appended = Document::open(dir / "crlf.netj");
+        appended.execute(SetRowsCommand{PieceId(2), 2});
+        edited = appended.hash();
+    }
+    const std::string mixed = readBytes(dir / "crlf.netj");
+    CHECK(mixed.find("\r\n") != std::string::npos);
+    CHECK(mixed.ends_with("}\n"));
+    CHECK(Document::open(dir / "crlf.netj").hash() == edited);
+}
