@@ -174,6 +174,12 @@ TEST_CASE("replay, to-lua, relax, export and report on a journal", "[cli]") {
     CHECK_THAT(relax.output, Contains("converged"));
     const fs::path snapshot = dir / "relaxed" / "small.nets";
     CHECK(fs::is_regular_file(snapshot));
+    // Stopped short of the tolerance: exit 3, the shape written all the same.
+    const Ran capped = runCli("relax " + quoted(journal) + " --max-steps 1 --out " +
+                              quoted(dir / "capped"));
+    CHECK(capped.exitCode == 3);
+    CHECK_THAT(capped.output, Contains("stopped (step limit) after 1 steps"));
+    CHECK(fs::is_regular_file(dir / "capped" / "small.nets"));
 
     const Ran exported =
         runCli("export " + quoted(snapshot) + " " + quoted(dir / "x" / "knots.csv") + " " +
@@ -199,4 +205,24 @@ TEST_CASE("replay, to-lua, relax, export and report on a journal", "[cli]") {
     const Ran broken = runCli("report " + quoted(dir / "none.netj"));
     CHECK(broken.exitCode == 1);
     CHECK_THAT(broken.output, StartsWith("netsculpt: error: "));
+}
+
+TEST_CASE("relax warns when the relaxed net stretches bars beyond what rope can do", "[cli]") {
+    // Three rows of 0.25 m bars tied between rails 2.8 m apart: only a 50 % stretch reaches.
+    const fs::path dir = freshFolder("cli-overstretch");
+    const fs::path script = writeScript(dir, "over.lua", R"(local ns = require "netsculpt"
+local doc = ns.new()
+local upper = doc:add_rail{points = {{0, 0, 5}, {4, 0, 5}}}
+local lower = doc:add_rail{points = {{0, 2, 3}, {4, 2, 3}}}
+local p = doc:attach_to_rail{rail = upper, columns = 11, rows = 3, bar = 0.25}
+doc:connect_to_rail{piece = p, rail = lower}
+)");
+    REQUIRE(runCli("run " + quoted(script) + " --out " + quoted(dir) + " -q").exitCode == 0);
+    const Ran relax = runCli("relax " + quoted(dir / "over.netj") + " --out " + quoted(dir));
+    INFO(relax.output);
+    CHECK(relax.exitCode == 0); // it is the model's equilibrium, so it converges ...
+    CHECK_THAT(relax.output, Contains("converged after"));
+    // ... but no rope hangs so: each of its 2 x (2 x 11 - 1) bars is stretched far beyond 2 %.
+    CHECK_THAT(relax.output,
+               Contains("netsculpt: warning: 42 bars are stretched by more than 2 %"));
 }

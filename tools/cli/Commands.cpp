@@ -153,6 +153,13 @@ int relaxDocument(const RelaxArgs& a, Verbosity verbosity) {
     std::cout << a.document.string() << ": " << describeRelaxResult(result) << "\n";
     if (verbosity != Verbosity::Quiet)
         std::cerr << "netsculpt: wrote " << snapshot.string() << "\n";
+    if (!result.converged)
+        return kExitNotConverged;
+    const int overstretched = buildReport(doc)["overstretched_bars"].get<int>();
+    if (overstretched > 0)
+        std::cerr << "netsculpt: warning: " << overstretched << " bars are stretched by more than "
+                  << kOverstretchStrain * 100 << " % of their length, which rope cannot do: the "
+                  << "net is tied between rails farther apart than it reaches (netsculpt report)\n";
     return 0;
 }
 

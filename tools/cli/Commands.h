@@ -35,6 +35,11 @@ struct RelaxArgs {
     std::int64_t maxSteps = -1;
     std::filesystem::path out = ".";
 };
+/// The exit code of a relax that stopped short of its tolerance (its shape is written all the
+/// same), so that a script signing off a design can tell.
+constexpr int kExitNotConverged = 3;
+/// Relaxes and writes the snapshot: 0, or kExitNotConverged; warns on stderr when the relaxed
+/// shape stretches bars beyond what rope can (the report's "Check the design").
 int relaxDocument(const RelaxArgs& a, Verbosity verbosity);
 
 struct ExportArgs {
