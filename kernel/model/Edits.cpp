@@ -126,7 +126,9 @@ PieceId attachToRail(Sculpture& s, const AttachToRailArgs& a) {
     Piece p = newPiece(s, a.rows, a.bar);
     p.columns = columns;
     p.closed = closed;
-    p.top = RailEdge{a.rail, a.at, closed ? 1.0 / columns : 1.0 / (columns - 1), 0, a.reverse};
+    // Reversed on an open rail, column 0 is at its far end (rail position 1) and the row runs back.
+    const double start = !closed && a.reverse ? 1.0 : a.at;
+    p.top = RailEdge{a.rail, start, closed ? 1.0 / columns : 1.0 / (columns - 1), 0, a.reverse};
     const PieceId id = p.id;
     s.pieces.emplace(id, std::move(p));
     return id;

@@ -391,6 +391,24 @@ TEST_CASE("a sculpture far from (0, 0, 0) is compiled about the whole metre near
     CHECK(worst < 1e-9);   // the net about (0, 0, 0), moved to the site
 }
 
+TEST_CASE("a piece reversed on an open rail runs from the rail's far end back to its start") {
+    Sculpture s;
+    const RailId rail = edit(s, [](Sculpture& m) {
+        return addRail(m, "beam", lineRail({0, 0, 5}, {4, 0, 5}));
+    });
+    const PieceId forward =
+        edit(s, [&](Sculpture& m) { return attachToRail(m, {rail, 11, 0, 3, 0.25, 0, false}); });
+    const PieceId reversed =
+        edit(s, [&](Sculpture& m) { return attachToRail(m, {rail, 11, 0, 3, 0.25, 0, true}); });
+    const CompiledSculpture c = compileSculpture(s);
+    for (int column = 0; column < 11; ++column) {
+        const Vec3 f = c.system.position[c.knotOf(forward, 0, column)];
+        const Vec3 r = c.system.position[c.knotOf(reversed, 0, column)];
+        CHECK(f.x == Approx(0.4 * column).margin(1e-12));
+        CHECK(r.x == Approx(4 - 0.4 * column).margin(1e-12));
+    }
+}
+
 TEST_CASE("the compiler's bar pairs tell a bar met twice, in either order, past a knot's slots") {
     BarPairs pairs(20);
     // Knot 3's bars to eleven higher knots: the first four in its slots, the rest in the set.
