@@ -18,7 +18,7 @@ struct AttachToRailArgs {
     double spacing = 0;   ///< m between top knots (closed rails: columns = round(length / spacing))
     int rows = 1;
     double bar = 0.25;    ///< m
-    double at = 0;        ///< rail position of column 0 (an open rail: 0; reversed, column 0 is at 1)
+    double at = 0; ///< rail position of column 0 (open rail: 0; reversed, column 0 is at 1)
     bool reverse = false; ///< run against the rail's direction
 };
 
