@@ -79,6 +79,7 @@ struct Document::State {
     bool warm = false;            ///< compiled positions come from a relaxation (carried on edits)
     bool relaxed = false;
     RelaxResult lastRelax;
+    std::optional<Wind> wind; ///< the wind the shape was last relaxed under (shapeWind())
     /// The system (law and shape) the last time the shape was relaxed: after an edit, relax()
     /// hands the fast path the tensions that shape had (physics/WarmStart.h), so that the parts
     /// the edit did not touch keep their equilibrium instead of going through a soft stage.
@@ -310,6 +311,7 @@ Document Document::load(const std::filesystem::path& file, std::vector<std::stri
                warnings);
     } else if (fits) {
         st.compiled.system.position = std::move(positions);
+        st.wind = data.wind;
         st.warm = data.warm;
         st.relaxed = data.relaxed;
         if (st.relaxed) st.relaxedSystem = st.compiled.system;
@@ -347,8 +349,9 @@ void Document::save(const std::filesystem::path& path) {
 void Document::saveSnapshot(const std::filesystem::path& path) const {
     const State& st = *state_;
     const MassSpringSystem& system = st.compiled.system;
-    writeFileDurably(path, encodeSnapshot(st.current(), st.compacted(), system.origin,
-                                          system.position, st.warm, st.relaxed));
+    writeFileDurably(path, encodeSnapshot(st.current(), st.compacted(),
+                                          {system.origin, system.position, st.wind, st.warm,
+                                           st.relaxed}));
 }
 
 CommandResult Document::execute(const Command& command, bool merge) {
@@ -368,6 +371,7 @@ const Sculpture& Document::sculpture() const { return state_->current(); }
 const CompiledSculpture& Document::compiled() const { return state_->compiled; }
 CompiledSculpture& Document::compiled() { return state_->compiled; }
 const RelaxResult& Document::lastRelax() const { return state_->lastRelax; }
+const std::optional<Wind>& Document::shapeWind() const { return state_->wind; }
 bool Document::isRelaxed() const { return state_->relaxed; }
 
 void Document::adoptPositions(std::vector<Vec3> positions, bool converged) {
@@ -377,6 +381,7 @@ void Document::adoptPositions(std::vector<Vec3> positions, bool converged) {
                         " positions given, the sculpture has " +
                         std::to_string(st.compiled.system.knotCount()) + " knots");
     st.compiled.system.position = std::move(positions);
+    st.wind.reset(); // the studio relaxes under gravity alone
     st.relaxed = converged;
     st.warm = true;
     if (converged) st.relaxedSystem = st.compiled.system;
@@ -404,6 +409,7 @@ RelaxResult Document::relax(const DocumentRelaxOptions& options) {
         worst >= 0)
         result.unsettledAt = system.refs[system.refStart[static_cast<std::size_t>(worst)]];
     st.lastRelax = result;
+    st.wind = options.solver.wind;
     st.relaxed = result.converged;
     st.warm = true;
     if (result.converged) st.relaxedSystem = system;

@@ -69,6 +69,10 @@ class Document {
     /// The last relaxation's result (converged = false before any).
     const RelaxResult& lastRelax() const;
     bool isRelaxed() const; ///< a relaxation converged since the last change
+    /// The steady wind the shape was last relaxed under (none: gravity alone, and after the
+    /// studio's relaxation); its load belongs in the shape's force balance (the report). Saved in
+    /// snapshots.
+    const std::optional<Wind>& shapeWind() const;
     /// Takes positions relaxed elsewhere (the studio's background relaxation) as the current
     /// shape, measured from compiled().system.origin as that system's are: the next edit
     /// warm-starts from them, as after relax(). `converged`: they are an

@@ -21,8 +21,7 @@ std::string hex16(std::uint64_t v) {
 } // namespace
 
 std::string encodeSnapshot(const Sculpture& model, const std::vector<JournalEntry>& history,
-                           const Vec3& origin, const std::vector<Vec3>& positions, bool warm,
-                           bool relaxed) {
+                           const SnapshotShape& shape) {
     Json j = Json::object();
     j["hash"] = hex16(hashSculpture(model));
     j["model"] = codec::sculptureJson(model);
@@ -30,15 +29,18 @@ std::string encodeSnapshot(const Sculpture& model, const std::vector<JournalEntr
     for (const JournalEntry& e : history) entries.push_back(codec::entryObject(e));
     j["history"] = std::move(entries);
     Json flat = Json::array();
-    for (const Vec3& p : positions) {
+    for (const Vec3& p : shape.positions) {
         flat.push_back(codec::number(p.x, "knot position"));
         flat.push_back(codec::number(p.y, "knot position"));
         flat.push_back(codec::number(p.z, "knot position"));
     }
-    j["shape"] = Json{{"warm", warm},
-                      {"relaxed", relaxed},
-                      {"origin", codec::vec3Json(origin, "the shape's origin")},
+    j["shape"] = Json{{"warm", shape.warm},
+                      {"relaxed", shape.relaxed},
+                      {"origin", codec::vec3Json(shape.origin, "the shape's origin")},
                       {"positions", std::move(flat)}};
+    if (shape.wind)
+        j["shape"]["wind"] = Json{{"direction", codec::vec3Json(shape.wind->direction, "wind")},
+                                  {"pressure", codec::number(shape.wind->pressure, "wind")}};
     std::string text = std::string(kSnapshotMagic) + " " + std::to_string(kSnapshotFormat) + "\n";
     try {
         text += j.dump(-1, ' ', true);
@@ -83,6 +85,13 @@ SnapshotData decodeSnapshot(std::string_view text, const std::string& name) {
         out.warm = sr.boolean("warm");
         out.relaxed = sr.boolean("relaxed");
         if (version >= 2) out.origin = sr.vec3("origin");
+        if (sr.has("wind")) {
+            codec::ObjectReader wr(sr.raw("wind"), "snapshot shape wind");
+            Wind wind{wr.vec3("direction"), wr.real("pressure")};
+            wr.finish();
+            validatedWindDirection(wind); // UserError for a zero, infinite or negative one
+            out.wind = wind;
+        }
         const Json& flat = sr.raw("positions");
         if (!flat.is_array() || flat.size() % 3 != 0)
             throw UserError("\"positions\" must be a flat array of x, y, z numbers");

@@ -4,7 +4,8 @@
 //   {"hash": "<hashSculpture, 16 hex digits>", "model": {rails, pieces, seams, id counters,
 //    gravity}, "history": [the compacted journal entries that build the model],
 //    "shape": {"warm": bool, "relaxed": bool, "origin": [x, y, z],
-//              "positions": [x0, y0, z0, x1, ...]}}
+//              "positions": [x0, y0, z0, x1, ...],
+//              "wind": {"direction": [x, y, z], "pressure": q} (only when relaxed under one)}}
 // The positions are measured from the origin (MassSpringSystem::origin), so that a shape relaxed
 // in site coordinates is saved to the last bit. Format 1 had no origin: its positions are the
 // sculpture's coordinates (origin (0, 0, 0)), and it is still read.
@@ -13,7 +14,11 @@
 
 #include "commands/Journal.h"
 
+#include "physics/Wind.h"
+
 #include <cstdint>
+#include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -32,13 +37,22 @@ struct SnapshotData {
     std::vector<JournalEntry> history;
     Vec3 origin;                 ///< m; what the positions are measured from
     std::vector<Vec3> positions; ///< m, from origin; one per knot of the compiled model
+    std::optional<Wind> wind;    ///< the wind the shape was relaxed under (Document::shapeWind)
     bool warm = false;           ///< the positions come from a relaxation
     bool relaxed = false;        ///< ... that converged
 };
 
+/// The shape a snapshot saves (SnapshotData's fields of the same names).
+struct SnapshotShape {
+    Vec3 origin;
+    std::span<const Vec3> positions;
+    std::optional<Wind> wind;
+    bool warm = false;
+    bool relaxed = false;
+};
+
 std::string encodeSnapshot(const Sculpture& model, const std::vector<JournalEntry>& history,
-                           const Vec3& origin, const std::vector<Vec3>& positions, bool warm,
-                           bool relaxed);
+                           const SnapshotShape& shape);
 /// Throws UserError naming `name` for a malformed file or a newer format.
 SnapshotData decodeSnapshot(std::string_view text, const std::string& name);
 

@@ -13,6 +13,7 @@ RelaxStatus relaxStatus(const Document& doc) {
     RelaxStatus status;
     status.relaxed = doc.isRelaxed();
     status.last = doc.lastRelax();
+    status.wind = doc.shapeWind();
     status.tolerance = status.last.tolerance > 0 ? status.last.tolerance : RelaxOptions{}.tolerance;
     return status;
 }

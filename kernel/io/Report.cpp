@@ -113,11 +113,16 @@ nlohmann::json buildReport(const Sculpture& s, const CompiledSculpture& c,
     const MassSpringSystem& sys = c.system;
     const bool physical = sys.knotCount() > 0;
     const std::vector<double> tension = sys.barCount() ? barTensions(sys) : std::vector<double>{};
-    const std::vector<Vec3> reaction = physical ? reactions(sys) : std::vector<Vec3>{};
+    const std::vector<Vec3> reaction = physical ? reactions(sys, status.wind) : std::vector<Vec3>{};
     const double weight = physical ? totalWeight(sys) : 0.0;
     json report;
     report["relaxed"] = status.relaxed;
-    report["residual"] = physical ? residual(sys) : 0.0;
+    report["residual"] = physical ? residual(sys, status.wind) : 0.0;
+    const Vec3 windForce = physical && status.wind ? totalWindForce(sys, *status.wind) : Vec3{};
+    report["wind"] = status.wind ? json{{"direction", vec(status.wind->direction)},
+                                        {"pressure", status.wind->pressure},
+                                        {"force", vec(windForce)}}
+                                 : json(nullptr);
     const RelaxResult& r = status.last;
     // Every run has a stop reason; a document that ran none (a snapshot opened) has no last run.
     report["relax"] = r.stopReason.empty()
@@ -201,7 +206,8 @@ nlohmann::json buildReport(const Sculpture& s, const CompiledSculpture& c,
                          {"max_reaction", largest},
                          {"points", std::move(points)}});
     }
-    const Vec3 expected = Vec3{} - s.gravity * mass; // 0 - 0 is +0: no "-0" printed
+    // The rails carry the weight and the wind: 0 - 0 is +0, so no "-0" is printed.
+    const Vec3 expected = Vec3{} - s.gravity * mass - windForce;
     const Vec3 difference = reactionSum - expected;
     const double relative = weight > 0 ? difference.norm() / weight : 0.0;
     report["force_balance"] = {

@@ -49,6 +49,9 @@ struct RelaxStatus {
     bool relaxed = false;    ///< a relaxation converged since the last change
     RelaxResult last;        ///< the last relaxation (converged = false before any)
     double tolerance = 1e-6; ///< the relaxation tolerance the force balance is checked against
+    /// The wind the shape was relaxed under (Document::shapeWind): its load is in the residual,
+    /// the reactions and the force balance. Empty = gravity alone.
+    std::optional<Wind> wind;
 };
 
 /// The full report as JSON (keys above).

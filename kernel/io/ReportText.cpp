@@ -105,8 +105,14 @@ std::string reportMarkdown(const json& r) {
               "and the tensions and rail loads below are those of a rope that does not exist.\n\n";
 
     const json& fb = r["force_balance"];
+    const bool windy = r.contains("wind") && !r["wind"].is_null();
     md += "## Force balance\n\nSum of the rail reactions " + vecText(fb["reaction_sum"]) +
-          " N against the weight " + vecText(fb["expected"]) + " N: relative difference " +
+          " N against the weight" +
+          (windy ? " and the wind (" + g6(r["wind"]["pressure"]) + " N/m towards " +
+                       vecText(r["wind"]["direction"]) + ": " + vecText(r["wind"]["force"]) +
+                       " N on the net)"
+                 : std::string()) +
+          " " + vecText(fb["expected"]) + " N: relative difference " +
           g6(fb["relative_difference"]) + ", " +
           (fb["within_tolerance"].get<bool>() ? "within" : "**not within**") + " the tolerance " +
           g6(fb["tolerance"]) + ". " + fb["note"].get<std::string>() + ".\n\n";

@@ -403,6 +403,19 @@ double totalWeight(const MassSpringSystem& system) {
     return total;
 }
 
+Vec3 totalWindForce(const MassSpringSystem& system, const Wind& wind) {
+    const Vec3 direction = validatedWindDirection(wind);
+    Vec3 total;
+    for (std::size_t b = 0; b < system.barCount(); ++b) {
+        const Vec3 d = system.position[system.barB[b]] - system.position[system.barA[b]];
+        const double length = d.norm();
+        if (length > 0) // as the force pass takes it (ForceField::setLoad)
+            total += (direction - d * (direction.dot(d) / (length * length))) *
+                     (wind.pressure * length);
+    }
+    return total;
+}
+
 std::vector<Vec3> knotForces(const MassSpringSystem& system, const std::optional<Wind>& wind) {
     ForceField field(system);
     field.setLoad(wind, 1.0);

@@ -152,6 +152,10 @@ class ForceField {
 /// Sum of m_j |g| over all knots, fixed ones included: N.
 double totalWeight(const MassSpringSystem& system);
 
+/// The wind's load on the whole net at the system's positions (the sum of its load on every
+/// bar, half of which each end knot takes): N. What the rails carry beside the weight.
+Vec3 totalWindForce(const MassSpringSystem& system, const Wind& wind);
+
 /// F_j of Eq. 3 for every knot at the system's positions, at stiffness scale 1: N.
 std::vector<Vec3> knotForces(const MassSpringSystem& system, const std::optional<Wind>& wind = {});
 
@@ -172,7 +176,7 @@ std::int64_t knotWithLargestResidual(const MassSpringSystem& system,
 std::vector<double> barTensions(const MassSpringSystem& system);
 
 /// Per knot: the force the rail exerts on a fixed knot, -F_j, in N; zero for free knots. At
-/// equilibrium without wind they sum to (0, 0, totalWeight) for gravity (0, 0, -g).
+/// equilibrium they sum to (0, 0, totalWeight) for gravity (0, 0, -g), less totalWindForce.
 std::vector<Vec3> reactions(const MassSpringSystem& system, const std::optional<Wind>& wind = {});
 
 } // namespace netsculpt

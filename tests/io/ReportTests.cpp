@@ -96,7 +96,7 @@ TEST_CASE("after a relaxation the rail reactions carry the total weight, to the 
     options.tolerance = 1e-7;
     const RelaxResult result = relaxRk4(t.compiled.system, options);
     REQUIRE(result.converged);
-    const json r = buildReport(t.s, t.compiled, RelaxStatus{true, result, options.tolerance});
+    const json r = buildReport(t.s, t.compiled, RelaxStatus{true, result, options.tolerance, {}});
 
     const double weight = r["total_weight"].get<double>();
     const json& fb = r["force_balance"];
@@ -293,4 +293,35 @@ TEST_CASE("the report of an opened snapshot says it was relaxed, without inventi
     CHECK_THAT(text, Contains("Shape: **relaxed** (residual "));
     CHECK_THAT(text, Contains("relaxed before the file was saved"));
     CHECK_THAT(text, !Contains("steps"));
+}
+
+TEST_CASE("a shape relaxed under wind: the report's residual and force balance carry its load, "
+          "and its snapshot keeps it",
+          "[wind]") {
+    Document doc;
+    addSoftRing(doc);
+    DocumentRelaxOptions options;
+    options.solver.wind = Wind{{1, 0, 0}, 0.5}; // 0.5 N per metre of rope, blowing along +x
+    REQUIRE(doc.relax(options).converged);
+    const json r = buildReport(doc);
+    const json& fb = r["force_balance"];
+    CHECK(r["residual"].get<double>() < 1e-6);
+    CHECK(fb["within_tolerance"] == true);
+    // The rails hold the net against the wind: their reactions' x is the wind's load, opposed.
+    const double windX = r["wind"]["force"]["x"].get<double>();
+    CHECK(windX > 0.1 * r["total_weight"].get<double>());
+    CHECK(fb["reaction_sum"]["x"].get<double>() == Approx(-windX).epsilon(1e-6));
+    CHECK_THAT(reportMarkdown(r), Contains("against the weight and the wind (0.5 N/m towards"));
+    // Judged under gravity alone, the same shape is out of balance by the wind's load.
+    const json still = buildReport(doc.sculpture(), doc.compiled(),
+                                   RelaxStatus{true, doc.lastRelax(), 1e-6, {}});
+    CHECK(still["force_balance"]["within_tolerance"] == false);
+    CHECK(still["residual"].get<double>() > 1);
+
+    const auto file = outputDir("wind") / "windy.nets";
+    doc.saveSnapshot(file);
+    const Document opened = Document::load(file);
+    REQUIRE(opened.shapeWind().has_value());
+    CHECK(opened.shapeWind()->pressure == 0.5);
+    CHECK(buildReport(opened)["force_balance"]["within_tolerance"] == true);
 }
