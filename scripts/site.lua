@@ -16,7 +16,8 @@ local quick = os.getenv("NETSCULPT_QUICK") == "1" or (arg ~= nil and arg[1] == "
 local east, north, ground = 691050.0, 5335980.0, 519.5 -- the square's corner, and its ground
 local doc = ns.new()
 local upper = doc:add_rail{name = "upper beam",
-                           points = {{east, north, ground + 8}, {east + 8, north + 0.5, ground + 8}}}
+                           points = {{east, north, ground + 8},
+                                     {east + 8, north + 0.5, ground + 8}}}
 local lower = doc:add_rail{name = "lower beam",
                            points = {{east, north + 6, ground + 5},
                                      {east + 8, north + 6.5, ground + 5}}}
