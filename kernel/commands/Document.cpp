@@ -291,7 +291,7 @@ Document Document::open(const std::filesystem::path& journal, std::vector<std::s
 Document Document::load(const std::filesystem::path& file, std::vector<std::string>* warnings) {
     const std::string text = readWhole(file);
     if (!isSnapshotText(text)) return open(file, warnings);
-    const SnapshotData data = decodeSnapshot(text, file.string());
+    SnapshotData data = decodeSnapshot(text, file.string());
     Document doc;
     State& st = *doc.state_;
     st.replay(data.history, file.string());
@@ -299,8 +299,8 @@ Document Document::load(const std::filesystem::path& file, std::vector<std::stri
     if (built != data.hash || hashSculpture(data.model) != data.hash)
         throw UserError(file.string() + " is inconsistent: its history builds a sculpture different from its model "
                                         "(the file was edited or damaged)");
-    std::vector<Vec3> positions = data.positions;
-    const Vec3 shift = data.origin - st.compiled.system.origin; // format 1 saved from (0, 0, 0)
+    std::vector<Vec3> positions = std::move(data.shape.positions);
+    const Vec3 shift = data.shape.origin - st.compiled.system.origin; // format 1: from (0, 0, 0)
     if (shift != Vec3{})
         for (Vec3& p : positions) p += shift;
     const bool fits = positions.size() == st.compiled.system.knotCount();
@@ -311,12 +311,12 @@ Document Document::load(const std::filesystem::path& file, std::vector<std::stri
                warnings);
     } else if (fits) {
         st.compiled.system.position = std::move(positions);
-        st.wind = data.wind;
-        st.warm = data.warm;
-        st.relaxed = data.relaxed;
+        st.wind = data.shape.wind;
+        st.warm = data.shape.warm;
+        st.relaxed = data.shape.relaxed;
         if (st.relaxed) st.relaxedSystem = st.compiled.system;
-    } else if (!data.positions.empty()) {
-        report({file.string() + ": the saved shape has " + std::to_string(data.positions.size()) +
+    } else if (!positions.empty()) {
+        report({file.string() + ": the saved shape has " + std::to_string(positions.size()) +
                 " knots, the model " + std::to_string(st.compiled.system.knotCount()) +
                 "; starting from the initial geometry"},
                warnings);

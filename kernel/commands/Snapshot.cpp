@@ -82,23 +82,24 @@ SnapshotData decodeSnapshot(std::string_view text, const std::string& name) {
         if (!history.is_array()) throw UserError("\"history\" must be an array of entries");
         for (const Json& e : history) out.history.push_back(codec::decodeEntryObject(e));
         codec::ObjectReader sr(r.raw("shape"), "snapshot shape");
-        out.warm = sr.boolean("warm");
-        out.relaxed = sr.boolean("relaxed");
-        if (version >= 2) out.origin = sr.vec3("origin");
+        out.shape.warm = sr.boolean("warm");
+        out.shape.relaxed = sr.boolean("relaxed");
+        if (version >= 2) out.shape.origin = sr.vec3("origin");
         if (sr.has("wind")) {
             codec::ObjectReader wr(sr.raw("wind"), "snapshot shape wind");
             Wind wind{wr.vec3("direction"), wr.real("pressure")};
             wr.finish();
             validatedWindDirection(wind); // UserError for a zero, infinite or negative one
-            out.wind = wind;
+            out.shape.wind = wind;
         }
         const Json& flat = sr.raw("positions");
         if (!flat.is_array() || flat.size() % 3 != 0)
             throw UserError("\"positions\" must be a flat array of x, y, z numbers");
-        out.positions.reserve(flat.size() / 3);
+        out.shape.positions.reserve(flat.size() / 3);
         for (std::size_t i = 0; i < flat.size(); i += 3)
-            out.positions.push_back({codec::realValue(flat[i], "a position"), codec::realValue(flat[i + 1], "a position"),
-                                     codec::realValue(flat[i + 2], "a position")});
+            out.shape.positions.push_back({codec::realValue(flat[i], "a position"),
+                                           codec::realValue(flat[i + 1], "a position"),
+                                           codec::realValue(flat[i + 2], "a position")});
         sr.finish();
         r.finish();
         return out;

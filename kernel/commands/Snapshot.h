@@ -18,7 +18,6 @@
 
 #include <cstdint>
 #include <optional>
-#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -31,10 +30,8 @@ inline constexpr std::string_view kSnapshotMagic = "netsculpt-snapshot";
 /// Whether a file's text (or its first bytes) is a snapshot's rather than a journal's.
 inline bool isSnapshotText(std::string_view text) { return text.starts_with(kSnapshotMagic); }
 
-struct SnapshotData {
-    Sculpture model;
-    std::uint64_t hash = 0;
-    std::vector<JournalEntry> history;
+/// The shape a snapshot saves ("shape").
+struct SnapshotShape {
     Vec3 origin;                 ///< m; what the positions are measured from
     std::vector<Vec3> positions; ///< m, from origin; one per knot of the compiled model
     std::optional<Wind> wind;    ///< the wind the shape was relaxed under (Document::shapeWind)
@@ -42,13 +39,11 @@ struct SnapshotData {
     bool relaxed = false;        ///< ... that converged
 };
 
-/// The shape a snapshot saves (SnapshotData's fields of the same names).
-struct SnapshotShape {
-    Vec3 origin;
-    std::span<const Vec3> positions;
-    std::optional<Wind> wind;
-    bool warm = false;
-    bool relaxed = false;
+struct SnapshotData {
+    Sculpture model;
+    std::uint64_t hash = 0;
+    std::vector<JournalEntry> history;
+    SnapshotShape shape;
 };
 
 std::string encodeSnapshot(const Sculpture& model, const std::vector<JournalEntry>& history,

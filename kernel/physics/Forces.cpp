@@ -61,6 +61,14 @@ Vec3 validatedWindDirection(const Wind& wind) {
 
 namespace {
 
+/// The wind's whole load on a bar d = p_b - p_a (its ends take half each): q L times the part of
+/// the unit wind direction normal to the bar; none on a bar of length 0.
+Vec3 windOnBar(const Vec3& direction, double pressure, const Vec3& d) {
+    const double length = std::sqrt(squaredLength(d));
+    if (!(length > 0)) return {};
+    return (direction - d * (direction.dot(d) / (length * length))) * (pressure * length);
+}
+
 /// |g| of `system`, validated.
 double gravityOf(const MassSpringSystem& system) {
     const double g = system.gravity.norm();
@@ -237,11 +245,8 @@ void ForceField::computeBars(const Vec3* positions, std::size_t begin, std::size
     }
     if (hasWind_)
         for (b = begin; b < end; ++b) {
-            // q L times the part of the wind direction normal to the bar, half to each end.
             const Vec3 d = at(positions, ends[2 * b + 1]) - at(positions, ends[2 * b]);
-            const double length = std::sqrt(squaredLength(d));
-            const Vec3 normal = windDirection_ - d * (windDirection_.dot(d) / (length * length));
-            barWind_[b] = length > 0 ? normal * (0.5 * windPressure_ * length) : Vec3{};
+            barWind_[b] = windOnBar(windDirection_, windPressure_, d) * 0.5; // half to each end
         }
 }
 
@@ -406,13 +411,9 @@ double totalWeight(const MassSpringSystem& system) {
 Vec3 totalWindForce(const MassSpringSystem& system, const Wind& wind) {
     const Vec3 direction = validatedWindDirection(wind);
     Vec3 total;
-    for (std::size_t b = 0; b < system.barCount(); ++b) {
-        const Vec3 d = system.position[system.barB[b]] - system.position[system.barA[b]];
-        const double length = d.norm();
-        if (length > 0) // as the force pass takes it (ForceField::setLoad)
-            total += (direction - d * (direction.dot(d) / (length * length))) *
-                     (wind.pressure * length);
-    }
+    for (std::size_t b = 0; b < system.barCount(); ++b)
+        total += windOnBar(direction, wind.pressure,
+                           system.position[system.barB[b]] - system.position[system.barA[b]]);
     return total;
 }
 
