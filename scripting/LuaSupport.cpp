@@ -103,6 +103,31 @@ class CollectorPause {
     bool wasRunning_;
 };
 
+/// Refuses a call with more arguments than its closure's limit (setClosures' upvalues 2 and 3;
+/// a closure without them takes any).
+void checkArgumentCount(const Call& call) {
+    lua_State* L = call.L;
+    if (lua_type(L, lua_upvalueindex(2)) != LUA_TNUMBER)
+        return;
+    const int arguments = int(lua_tointeger(L, lua_upvalueindex(2)));
+    const int limit = arguments == kKeywordTable ? 1 : arguments;
+    const int first = lua_toboolean(L, lua_upvalueindex(3)) ? 2 : 1; // after a method's self
+    int last = lua_gettop(L);
+    while (last >= first && lua_isnil(L, last))
+        --last;
+    const int given = last - first + 1;
+    if (given <= limit || (arguments == kKeywordTable && !lua_istable(L, first)))
+        return;
+    std::string extra;
+    for (int i = first + limit; i <= last; ++i)
+        extra += (extra.empty() ? "" : ", ") + describe(L, i);
+    const std::string takes = limit == 0   ? "takes no arguments"
+                              : limit == 1 ? "takes at most 1 argument"
+                                           : "takes at most " + std::to_string(limit) +
+                                                 " arguments";
+    call.fail(takes + ", got " + std::to_string(given) + " (the extra: " + extra + ")");
+}
+
 } // namespace
 
 int invoke(lua_State* L, const char* name, Body body) {
@@ -114,6 +139,7 @@ int invoke(lua_State* L, const char* name, Body body) {
         std::string message;
         try {
             Call call{L, name};
+            checkArgumentCount(call);
             results = body(call);
         } catch (...) {
             message = currentErrorMessage(name);
@@ -129,12 +155,26 @@ int invoke(lua_State* L, const char* name, Body body) {
     return results;
 }
 
-void setFunctions(lua_State* L, std::initializer_list<Function> functions) {
+namespace {
+
+void setClosures(lua_State* L, std::initializer_list<Function> functions, bool methods) {
     for (const Function& f : functions) {
         lua_pushstring(L, f.name);
-        lua_pushcclosure(L, f.function, 1);
+        lua_pushinteger(L, f.arguments);
+        lua_pushboolean(L, methods);
+        lua_pushcclosure(L, f.function, 3);
         lua_setfield(L, -2, f.name);
     }
+}
+
+} // namespace
+
+void setFunctions(lua_State* L, std::initializer_list<Function> functions) {
+    setClosures(L, functions, false);
+}
+
+void setMethods(lua_State* L, std::initializer_list<Function> methods) {
+    setClosures(L, methods, true);
 }
 
 std::int64_t checkWhole(const Call& call, int index, const char* arg, std::int64_t min,

@@ -61,10 +61,18 @@ template <Body F> int entry(lua_State* L) {
 struct Function {
     const char* name;
     lua_CFunction function; ///< entry<body>, which reads its name from upvalue 1
+    int arguments;          ///< the most arguments it takes (a method's self not counted)
 };
-/// Sets table[name] = function (a closure with the name as upvalue) for each entry; the table
-/// is at the top of the stack.
-void setFunctions(lua_State* L, std::initializer_list<Function> functions);
+/// Function::arguments of a function that takes one table of keyword arguments
+/// (doc:set_rows{piece = p, rows = 3}): called with several values of which the first is no
+/// table (doc:set_rows(p, 3)), it is the body that says it expects a table.
+inline constexpr int kKeywordTable = -1;
+/// Sets table[name] = function for each entry, a closure with the name, the argument limit and
+/// whether it is a method as upvalues; the table is at the top of the stack. A call with more
+/// arguments than the limit is refused, naming the extra ones: an argument in the wrong place
+/// is an error, not ignored (doc:undo(3) is not doc:undo()). Trailing nils are not counted.
+void setFunctions(lua_State* L, std::initializer_list<Function> functions); ///< ns.f(...)
+void setMethods(lua_State* L, std::initializer_list<Function> methods);     ///< obj:f(...)
 
 // ---- reading values (raw access; throw ArgumentError) -------------------------------------
 

@@ -8,6 +8,7 @@
 #include "scripting/Sandbox.h"
 #include "scripting/Wrap.h"
 
+#include <cstdint>
 #include <cstdio>
 
 namespace netsculpt::lua {
@@ -47,15 +48,24 @@ int w_open(Call& call) {
     return 2;
 }
 
-int w_undo(Call& call) {
-    checkDocument(call).undo();
+/// doc:undo(steps) and doc:redo(steps), one step when not given: all the steps or, when fewer
+/// can be taken, none.
+int undoOrRedo(Call& call, bool undo) {
+    Document& doc = checkDocument(call);
+    const std::size_t available = undo ? doc.undoableSteps() : doc.redoableSteps();
+    const std::int64_t steps =
+        lua_isnoneornil(call.L, 2) ? 1 : checkWhole(call, 2, "steps", 1, INT32_MAX);
+    if (available > 0 && std::size_t(steps) > available)
+        call.bad("steps", 2,
+                 "at most " + std::to_string(available) + ", the steps that can be " +
+                     (undo ? "undone" : "redone"));
+    for (std::int64_t i = 0; i < steps; ++i)
+        undo ? doc.undo() : doc.redo(); // with none available: "nothing to undo"
     return 0;
 }
 
-int w_redo(Call& call) {
-    checkDocument(call).redo();
-    return 0;
-}
+int w_undo(Call& call) { return undoOrRedo(call, true); }
+int w_redo(Call& call) { return undoOrRedo(call, false); }
 
 int w_can_undo(Call& call) {
     lua_pushboolean(call.L, checkDocument(call).canUndo());
@@ -145,21 +155,21 @@ int w_pieces(Call& call) {
 } // namespace
 
 void addModuleDocumentFunctions(lua_State* L) {
-    setFunctions(L, {{"new", entry<w_new>}, {"open", entry<w_open>}});
+    setFunctions(L, {{"new", entry<w_new>, 0}, {"open", entry<w_open>, 1}});
 }
 
 void addDocumentMethods(lua_State* L) {
-    setFunctions(L, {{"undo", entry<w_undo>},
-                     {"redo", entry<w_redo>},
-                     {"can_undo", entry<w_can_undo>},
-                     {"can_redo", entry<w_can_redo>},
-                     {"save", entry<w_save>},
-                     {"save_snapshot", entry<w_save_snapshot>},
-                     {"set_gravity", entry<w_set_gravity>},
-                     {"rename", entry<w_rename>},
-                     {"hash", entry<w_hash>},
-                     {"rails", entry<w_rails>},
-                     {"pieces", entry<w_pieces>}});
+    setMethods(L, {{"undo", entry<w_undo>, 1},
+                     {"redo", entry<w_redo>, 1},
+                     {"can_undo", entry<w_can_undo>, 0},
+                     {"can_redo", entry<w_can_redo>, 0},
+                     {"save", entry<w_save>, 1},
+                     {"save_snapshot", entry<w_save_snapshot>, 1},
+                     {"set_gravity", entry<w_set_gravity>, 3},
+                     {"rename", entry<w_rename>, kKeywordTable},
+                     {"hash", entry<w_hash>, 0},
+                     {"rails", entry<w_rails>, 0},
+                     {"pieces", entry<w_pieces>, 0}});
     addRailMethods(L);
     addPieceMethods(L);
     addQueryMethods(L);

@@ -162,15 +162,15 @@ int w_script_dir(Call& call) {
 } // namespace
 
 void addIoMethods(lua_State* L) {
-    setFunctions(L, {{"export", entry<w_export>},
-                     {"report", entry<w_report>},
-                     {"write_report", entry<w_write_report>}});
+    setMethods(L, {{"export", entry<w_export>, 2},
+                     {"report", entry<w_report>, 0},
+                     {"write_report", entry<w_write_report>, 1}});
 }
 
 void addModuleIoFunctions(lua_State* L) {
-    setFunctions(L, {{"export_formats", entry<w_export_formats>},
-                     {"output_dir", entry<w_output_dir>},
-                     {"script_dir", entry<w_script_dir>}});
+    setFunctions(L, {{"export_formats", entry<w_export_formats>, 0},
+                     {"output_dir", entry<w_output_dir>, 0},
+                     {"script_dir", entry<w_script_dir>, 0}});
 }
 
 } // namespace netsculpt::lua

@@ -225,18 +225,18 @@ int w_remove_piece(Call& call) {
 } // namespace
 
 void addPieceMethods(lua_State* L) {
-    setFunctions(L, {{"attach_to_rail", entry<w_attach_to_rail>},
-                     {"attach_to_piece", entry<w_attach_to_piece>},
-                     {"split", entry<w_split>},
-                     {"set_rows", entry<w_set_rows>},
-                     {"set_columns", entry<w_set_columns>},
-                     {"set_gear", entry<w_set_gear>},
-                     {"set_bar_length", entry<w_set_bar_length>},
-                     {"connect_to_rail", entry<w_connect_to_rail>},
-                     {"disconnect", entry<w_disconnect>},
-                     {"set_material", entry<w_set_material>},
-                     {"set_colour", entry<w_set_colour>},
-                     {"remove_piece", entry<w_remove_piece>}});
+    setMethods(L, {{"attach_to_rail", entry<w_attach_to_rail>, kKeywordTable},
+                     {"attach_to_piece", entry<w_attach_to_piece>, kKeywordTable},
+                     {"split", entry<w_split>, kKeywordTable},
+                     {"set_rows", entry<w_set_rows>, kKeywordTable},
+                     {"set_columns", entry<w_set_columns>, kKeywordTable},
+                     {"set_gear", entry<w_set_gear>, kKeywordTable},
+                     {"set_bar_length", entry<w_set_bar_length>, kKeywordTable},
+                     {"connect_to_rail", entry<w_connect_to_rail>, kKeywordTable},
+                     {"disconnect", entry<w_disconnect>, 1},
+                     {"set_material", entry<w_set_material>, kKeywordTable},
+                     {"set_colour", entry<w_set_colour>, kKeywordTable},
+                     {"remove_piece", entry<w_remove_piece>, 1}});
 }
 
 } // namespace netsculpt::lua

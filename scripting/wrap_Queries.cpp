@@ -188,17 +188,17 @@ int h_rail_point(Call& call) {
 } // namespace
 
 void addQueryMethods(lua_State* L) {
-    setFunctions(L, {{"piece_info", entry<w_piece_info>},
-                     {"knots", entry<w_knots>},
-                     {"rail_info", entry<w_rail_info>}});
+    setMethods(L, {{"piece_info", entry<w_piece_info>, 1},
+                     {"knots", entry<w_knots>, 1},
+                     {"rail_info", entry<w_rail_info>, 1}});
 }
 
 void addPieceHandleMethods(lua_State* L) {
-    setFunctions(L, {{"info", entry<h_piece_info>}, {"knots", entry<h_piece_knots>}});
+    setMethods(L, {{"info", entry<h_piece_info>, 0}, {"knots", entry<h_piece_knots>, 0}});
 }
 
 void addRailHandleMethods(lua_State* L) {
-    setFunctions(L, {{"info", entry<h_rail_info>}, {"point", entry<h_rail_point>}});
+    setMethods(L, {{"info", entry<h_rail_info>, 0}, {"point", entry<h_rail_point>, 1}});
 }
 
 } // namespace netsculpt::lua

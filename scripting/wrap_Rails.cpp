@@ -108,13 +108,13 @@ int w_circle(Call& call) {
 } // namespace
 
 void addModuleRailFunctions(lua_State* L) {
-    setFunctions(L, {{"circle", entry<w_circle>}});
+    setFunctions(L, {{"circle", entry<w_circle>, kKeywordTable}});
 }
 
 void addRailMethods(lua_State* L) {
-    setFunctions(L, {{"add_rail", entry<w_add_rail>},
-                     {"import_rails", entry<w_import_rails>},
-                     {"remove_rail", entry<w_remove_rail>}});
+    setMethods(L, {{"add_rail", entry<w_add_rail>, kKeywordTable},
+                     {"import_rails", entry<w_import_rails>, 2},
+                     {"remove_rail", entry<w_remove_rail>, 1}});
 }
 
 } // namespace netsculpt::lua

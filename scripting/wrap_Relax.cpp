@@ -107,11 +107,11 @@ int w_backends(Call& call) {
 } // namespace
 
 void addRelaxMethods(lua_State* L) {
-    setFunctions(L, {{"relax", entry<w_relax>}, {"last_relax", entry<w_last_relax>}});
+    setMethods(L, {{"relax", entry<w_relax>, kKeywordTable}, {"last_relax", entry<w_last_relax>, 0}});
 }
 
 void addModuleRelaxFunctions(lua_State* L) {
-    setFunctions(L, {{"backends", entry<w_backends>}});
+    setFunctions(L, {{"backends", entry<w_backends>, 0}});
 }
 
 } // namespace netsculpt::lua

@@ -360,6 +360,8 @@ CommandResult Document::execute(const Command& command, bool merge) {
 
 bool Document::canUndo() const { return state_->index > 0; }
 bool Document::canRedo() const { return state_->index < state_->steps.size(); }
+std::size_t Document::undoableSteps() const { return state_->index; }
+std::size_t Document::redoableSteps() const { return state_->steps.size() - state_->index; }
 void Document::undo() { state_->undoRedo(true, true); }
 void Document::redo() { state_->undoRedo(false, true); }
 void Document::endGesture() { state_->gestureOpen = false; }

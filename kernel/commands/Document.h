@@ -54,6 +54,8 @@ class Document {
     bool canRedo() const;
     void undo(); ///< UserError when there is nothing to undo
     void redo(); ///< UserError when there is nothing to redo
+    std::size_t undoableSteps() const; ///< how many undo() calls in a row can succeed
+    std::size_t redoableSteps() const; ///< how many redo() calls in a row can succeed
     /// Ends the current merge run: the next execute(…, merge = true) starts a new undo step.
     void endGesture();
 

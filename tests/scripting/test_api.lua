@@ -178,6 +178,32 @@ T.case("undo, redo, hash", function()
   T.raises(function() doc:undo() end, "undo: nothing to undo")
 end)
 
+T.case("undo and redo several steps at once", function()
+  local doc = ns.new()
+  local ring = doc:add_rail{points = T.circle(2, 5, 48), closed = true}
+  local p = doc:attach_to_rail{rail = ring, columns = 24, rows = 5, bar = 0.4}
+  local h2 = doc:hash()
+  doc:set_rows{piece = p, rows = 7}
+  doc:set_columns{piece = p, columns = 48}
+  local h4 = doc:hash()
+  doc:undo(2)
+  T.eq(doc:hash(), h2)
+  T.eq(p:info().rows, 5)
+  doc:redo(2)
+  T.eq(doc:hash(), h4)
+  T.eq(p:info().columns, 48)
+  -- more steps than there are: refused whole, nothing undone
+  T.raises(function() doc:undo(5) end, "undo: argument 'steps' must be at most 4", "got 5")
+  T.eq(doc:hash(), h4)
+  doc:undo(4)
+  T.eq(doc:can_undo(), false)
+  T.raises(function() doc:redo(0) end, "redo: argument 'steps' must be a whole number", "got 0")
+  T.raises(function() doc:redo(5) end, "redo: argument 'steps' must be at most 4", "got 5")
+  T.eq(#doc:rails(), 0)
+  doc:redo(nil)
+  T.eq(#doc:rails(), 1)
+end)
+
 T.case("relax, export, report, save and open", function()
   local doc = ns.new()
   T.eq(doc:last_relax(), nil)

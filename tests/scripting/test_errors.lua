@@ -27,6 +27,19 @@ T.case("whole numbers", function()
         "split: argument 'column' must be a whole number from 1 to 1000000, got 0")
 end)
 
+T.case("extra arguments", function()
+  fails(here(), function() doc:hash(1) end, "hash: takes no arguments, got 1 (the extra: 1)")
+  fails(here(), function() doc:set_rows({piece = p, rows = 3}, 7) end,
+        "set_rows: takes at most 1 argument, got 2 (the extra: 7)")
+  fails(here(), function() doc:undo(1, "all") end,
+        "undo: takes at most 1 argument, got 2 (the extra: \"all\")")
+  fails(here(), function() p:info(p) end, "info: takes no arguments, got 1 (the extra: piece")
+  fails(here(), function() ns.circle({radius = 1, points = 8}, 2, 3) end,
+        "circle: takes at most 1 argument, got 3 (the extra: 2, 3)")
+  -- trailing nils are not arguments
+  T.eq(doc:piece_info(p, nil).rows, 6)
+end)
+
 T.case("numbers and lengths", function()
   fails(here(), function() doc:attach_to_piece{piece = p, rows = 3, bar = -0.2} end,
         "attach_to_piece: argument 'bar' must be a finite number > 0, got -0.2")
