@@ -119,19 +119,28 @@ int w_report(Call& call) {
     return 1;
 }
 
-/// doc:write_report(path): the report as .json, .md (Markdown) or .csv (the pieces table),
-/// by extension, into the output folder. Returns the path written.
+/// doc:write_report(path [, {table = "pieces" | "attachments"}]): the report as .json, .md
+/// (Markdown) or .csv (the pieces table, or the rails' attachment points), by extension, into the
+/// output folder. Returns the path written.
 int w_write_report(Call& call) {
     const Document& doc = checkDocument(call);
     const std::string given = checkString(call, 2, "path");
     const std::string ext = extensionOf(given);
     if (ext != "json" && ext != "md" && ext != "csv")
         call.fail("argument 'path' must end in .json, .md or .csv, got \"" + given + "\"");
+    std::string table = "pieces";
+    if (!lua_isnoneornil(call.L, 3)) {
+        const TableArgs args(call, 3, {"table"});
+        table = args.choice("table", {"pieces", "attachments"}, "pieces");
+        if (ext != "csv")
+            call.fail("argument 'table' is for a .csv report, got \"" + given + "\"");
+    }
     const auto path = resolveWritePath(context(call.L), given, call.name);
     const nlohmann::json report = buildReport(doc);
-    const std::string text = ext == "json" ? report.dump(2) + "\n"
-                             : ext == "md" ? reportMarkdown(report)
-                                           : reportPiecesCsv(report);
+    const std::string text = ext == "json"          ? report.dump(2) + "\n"
+                             : ext == "md"          ? reportMarkdown(report)
+                             : table == "pieces"    ? reportPiecesCsv(report)
+                                                    : reportAttachmentsCsv(report);
     writeFileDurably(path, text);
     lua_pushstring(call.L, path.c_str());
     return 1;
@@ -164,7 +173,7 @@ int w_script_dir(Call& call) {
 void addIoMethods(lua_State* L) {
     setMethods(L, {{"export", entry<w_export>, 2},
                      {"report", entry<w_report>, 0},
-                     {"write_report", entry<w_write_report>, 1}});
+                     {"write_report", entry<w_write_report>, 2}});
 }
 
 void addModuleIoFunctions(lua_State* L) {

@@ -59,15 +59,57 @@ json pieceTop(const Sculpture& s, const Piece& p) {
             {"offset", e.offset}};
 }
 
-json pieceReport(const Sculpture& s, const CompiledSculpture& c, const Piece& p) {
+/// Whether knot k is in `column` of `piece`.
+bool inColumn(const MassSpringSystem& sys, std::uint32_t k, PieceId piece, int column) {
+    for (std::uint32_t i = sys.refStart[k]; i < sys.refStart[k + 1]; ++i)
+        if (sys.refs[i].piece == piece && sys.refs[i].column == column)
+            return true;
+    return false;
+}
+
+/// Seam `seam` seen from `p`, the other piece on `side`. The bars along the seam column (left's
+/// last column, right's column 0) are in both pieces and made once, counted in the piece that
+/// owns them.
+json seamReport(const Sculpture& s, const MassSpringSystem& sys, const Seam& seam, PieceId p) {
+    const int column = s.pieces.at(seam.left).columns - 1;
+    const auto onSeam = [&](std::uint32_t k) {
+        return inColumn(sys, k, seam.left, column) && inColumn(sys, k, seam.right, 0);
+    };
+    std::size_t shared = 0;
+    PieceId owner = seam.left;
+    for (std::size_t b = 0; b < sys.barCount(); ++b)
+        if (onSeam(sys.barA[b]) && onSeam(sys.barB[b])) {
+            ++shared;
+            owner = sys.barPiece[b];
+        }
+    const bool left = seam.right == p;
+    return {{"side", left ? "left" : "right"},
+            {"piece", (left ? seam.left : seam.right).value},
+            {"shared_bars", shared},
+            {"shared_bars_counted_in", owner.value}};
+}
+
+/// The bar lengths of `p` as they are knotted when its length varies by row: the bars between
+/// rows r and r + 1 all have one length, the mean of the two rows' (DESIGN.md "Net piece").
+json lengthsBetweenRows(const Piece& p) {
+    json lengths = json::array();
+    if (p.bar.axis == BarAxis::Row)
+        for (int r = 0; r + 1 < p.rows; ++r)
+            lengths.push_back(p.barLength(r, 0, r + 1, 0));
+    return lengths;
+}
+
+json pieceReport(const Sculpture& s, const CompiledSculpture& c, const Piece& p,
+                 const std::vector<double>& tension) {
     const MassSpringSystem& sys = c.system;
     std::size_t bars = 0, ownedKnots = 0;
-    double rope = 0, ropeMass = 0;
+    double rope = 0, ropeMass = 0, maxTension = 0;
     for (std::size_t b = 0; b < sys.barCount(); ++b)
         if (sys.barPiece[b] == p.id) {
             ++bars;
             rope += sys.restLength[b];
             ropeMass += sys.linearDensity[b] * sys.restLength[b];
+            maxTension = std::max(maxTension, tension[b]);
         }
     for (std::size_t k = 0; k < sys.knotCount(); ++k)
         if (sys.refs[sys.refStart[k]].piece == p.id)
@@ -77,12 +119,9 @@ json pieceReport(const Sculpture& s, const CompiledSculpture& c, const Piece& p)
     for (int i = 0; i < count; ++i)
         lengths.push_back(p.bar.at(i));
     json seams = json::array();
-    for (const Seam& seam : s.seams) {
-        if (seam.left == p.id)
-            seams.push_back({{"side", "right"}, {"piece", seam.right.value}});
-        if (seam.right == p.id)
-            seams.push_back({{"side", "left"}, {"piece", seam.left.value}});
-    }
+    for (const Seam& seam : s.seams)
+        if (seam.left == p.id || seam.right == p.id)
+            seams.push_back(seamReport(s, sys, seam, p.id));
     const Material& m = p.material;
     return {{"id", p.id.value},
             {"name", p.name},
@@ -95,6 +134,8 @@ json pieceReport(const Sculpture& s, const CompiledSculpture& c, const Piece& p)
             {"mass", ropeMass + m.knotMass * double(ownedKnots)},
             {"bar_axis", p.bar.axis == BarAxis::Column ? "column" : "row"},
             {"bar_lengths", lengths},
+            {"bar_lengths_between_rows", lengthsBetweenRows(p)},
+            {"max_tension", maxTension},
             {"material",
              {{"stiffness", m.stiffness},
               {"compression_ratio", m.compressionRatio},
@@ -225,7 +266,7 @@ nlohmann::json buildReport(const Sculpture& s, const CompiledSculpture& c,
 
     json pieces = json::array();
     for (const auto& [id, piece] : s.pieces)
-        pieces.push_back(pieceReport(s, c, piece));
+        pieces.push_back(pieceReport(s, c, piece, tension));
     report["pieces"] = std::move(pieces);
     report["rails"] = std::move(rails);
     return report;

@@ -22,9 +22,15 @@
 //   (sum of their rest lengths), mass (its bars' rope + the knot mass of the knots it owns: a
 //   shared knot's knot mass counts once, in the first piece that holds it; the pieces' masses
 //   sum to total_mass), bar_axis ("column" or "row"), bar_lengths[] (per column or per row),
+//   bar_lengths_between_rows[] (a piece whose length varies by row: the length of every bar
+//   between rows r and r + 1, as it is knotted; empty otherwise), max_tension (the largest
+//   tension of its bars, 0 when none is stretched),
 //   material {stiffness, compression_ratio, knot_mass, linear_density}, colour [r, g, b],
-//   top {kind "rail": rail, rail_name, at, step, reverse | kind "piece": parents[], gear},
-//   bottom (null or {rail, rail_name, at, step, reverse}), seams[] {side "left"/"right", piece}.
+//   top {kind "rail": rail, rail_name, at, step, offset, reverse | kind "piece": parents[], gear,
+//   gear_value, offset} (offset: the column of the rail's or the parents' row where the piece's
+//   column 0 is), bottom (null or {rail, rail_name, at, step, offset, reverse}), seams[] {side
+//   "left"/"right", piece, shared_bars (the bars along the seam column, made once),
+//   shared_bars_counted_in (the piece whose bars they are)}.
 //   rails[]: id, name, closed, length, attachments (fixed knots held by it), reaction (sum of
 //   the reaction forces of its points), max_reaction (largest magnitude), points[] {piece, row,
 //   column, t, reaction, magnitude}.
@@ -66,7 +72,9 @@ RelaxStatus relaxStatus(const Document& doc);
 /// The Markdown summary that `netsculpt report` prints.
 std::string reportMarkdown(const nlohmann::json& report);
 /// Per-piece table as CSV (id, name, rows, columns, closed, knots, bars, rope_length, mass,
-/// bar_axis, bar_min, bar_max).
+/// bar_axis, bar_min, bar_max, bar_first, bar_last: the knotted lengths at the first and the last
+/// column, or between the first and the last two rows; max_tension; top and last_row: where the
+/// piece hangs from and where its last row is tied, "free" when nowhere, as the Markdown says).
 std::string reportPiecesCsv(const nlohmann::json& report);
 /// Per-attachment-point table as CSV (rail, piece, row, column, t, x, y, z: where the point is in
 /// the sculpture's coordinates, fx, fy, fz, magnitude).

@@ -8,7 +8,9 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 namespace netsculpt {
 
@@ -17,6 +19,8 @@ namespace {
 using nlohmann::json;
 
 std::string g6(double value) {
+    if (value == 0)
+        value = 0; // no "-0"
     char text[40];
     std::snprintf(text, sizeof text, "%.6g", value);
     return text;
@@ -58,14 +62,121 @@ std::string barText(const json& at) {
            num(at["b"]["column"]);
 }
 
-std::string topText(const json& top) {
+const json& railOf(const json& rails, const json& id) {
+    for (const json& rail : rails)
+        if (rail["id"] == id)
+            return rail;
+    throw std::logic_error("report: no rail " + num(id));
+}
+
+/// Where an edge on a rail starts: "rail 1 (crown), from 10 m along it (t = 0.333)", and
+/// ", backwards" when its columns run against the rail's direction.
+std::string railEdgeText(const json& edge, const json& rails) {
+    const bool reverse = edge["reverse"].get<bool>();
+    const json& rail = railOf(rails, edge["rail"]);
+    double t = edge["at"].get<double>() +
+               (reverse ? -1.0 : 1.0) * edge["offset"].get<double>() * edge["step"].get<double>();
+    if (rail["closed"].get<bool>())
+        t -= std::floor(t);
+    return "rail " + num(edge["rail"]) + " (" + edge["rail_name"].get<std::string>() + "), from " +
+           g6(t * rail["length"].get<double>()) + " m along it (t = " + g6(t) + ")" +
+           (reverse ? ", backwards" : "");
+}
+
+std::string topText(const json& top, const json& rails) {
     if (top["kind"] == "rail")
-        return "rail " + std::to_string(top["rail"].get<int>()) + " (" +
-               top["rail_name"].get<std::string>() + ")";
+        return railEdgeText(top, rails);
     std::string parents;
     for (const auto& p : top["parents"])
         parents += io::concat({parents.empty() ? "" : "+", std::to_string(p.get<int>())});
-    return "piece " + parents + ", gear " + top["gear"].get<std::string>();
+    const int offset = top["offset"].get<int>();
+    return "piece " + parents + ", gear " + top["gear"].get<std::string>() +
+           (offset > 0 ? ", from column " + std::to_string(offset) + " of their last row" : "");
+}
+
+std::string seamsText(const json& seams) {
+    std::string text;
+    for (const json& seam : seams)
+        text += (text.empty() ? "" : "; ") + std::string("piece ") + num(seam["piece"]) +
+                " to the " + seam["side"].get<std::string>() + " (the " +
+                num(seam["shared_bars"]) + " bars along the seam counted in piece " +
+                num(seam["shared_bars_counted_in"]) + ")";
+    return text.empty() ? "-" : text;
+}
+
+/// The bar lengths as knotted, first to last: "0.25 at column 0 to 0.2 at column 12", or
+/// between rows for a piece whose length varies by row.
+std::string barLengthText(const json& p) {
+    const json& byRow = p["bar_lengths_between_rows"];
+    const json& lengths = byRow.empty() ? p["bar_lengths"] : byRow;
+    const double first = lengths.front().get<double>(), last = lengths.back().get<double>();
+    if (first == last)
+        return g6(first);
+    if (!byRow.empty()) {
+        const std::string end = std::to_string(lengths.size());
+        return g6(first) + " between rows 0 and 1 to " + g6(last) + " between rows " +
+               std::to_string(lengths.size() - 1) + " and " + end;
+    }
+    return g6(first) + " at column 0 to " + g6(last) + " at column " +
+           std::to_string(lengths.size() - 1);
+}
+
+/// "first,last": the knotted bar lengths at the first and last column (or between the first
+/// and the last two rows), round-trip precision.
+std::string knottedEnds(const json& p) {
+    const json& byRow = p["bar_lengths_between_rows"];
+    const json& lengths = byRow.empty() ? p["bar_lengths"] : byRow;
+    return num(lengths.front()) + "," + num(lengths.back());
+}
+
+std::string piecesMarkdown(const json& r) {
+    std::string md =
+        "## Pieces\n\nBar lengths as knotted, first to last. A seam's two pieces share the knots "
+        "of one column; the bars along it are made once, with the piece they are counted in.\n\n"
+        "| id | name | rows x columns | closed | knots | bars | rope (m) | mass (kg) | bar length "
+        "(m) | largest tension (N) | top | last row | seams |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    for (const json& p : r["pieces"])
+        md += "| " + num(p["id"]) + " | " + cell(p["name"].get<std::string>()) + " | " +
+              num(p["rows"]) + " x " + num(p["columns"]) + " | " +
+              (p["closed"].get<bool>() ? "yes" : "no") + " | " + num(p["knots"]) + " | " +
+              num(p["bars"]) + " | " + g6(p["rope_length"]) + " | " + g6(p["mass"]) + " | " +
+              barLengthText(p) + " | " + g6(p["max_tension"]) + " | " +
+              cell(topText(p["top"], r["rails"])) + " | " +
+              cell(p["bottom"].is_null() ? "free" : railEdgeText(p["bottom"], r["rails"])) +
+              " | " + seamsText(p["seams"]) + " |\n";
+    return md;
+}
+
+std::string railsMarkdown(const json& r) {
+    std::string md =
+        "\n## Rails\n\nA reaction is the force the rail exerts on the net, in newtons along the "
+        "sculpture's axes (z up); the load on the rail is its opposite.\n\n"
+        "| id | name | length (m) | closed | attachments | reaction sum (N) | largest reaction "
+        "(N) |\n|---|---|---|---|---|---|---|\n";
+    for (const json& rail : r["rails"])
+        md += "| " + num(rail["id"]) + " | " + cell(rail["name"].get<std::string>()) + " | " +
+              g6(rail["length"]) + " | " + (rail["closed"].get<bool>() ? "yes" : "no") + " | " +
+              num(rail["attachments"]) + " | " + vecText(rail["reaction"]) + " | " +
+              g6(rail["max_reaction"]) + " |\n";
+    return md;
+}
+
+/// Every point where the net is held, rail by rail, in the order of t.
+std::string attachmentsMarkdown(const json& r) {
+    std::string md = "\n## Attachment points\n";
+    for (const json& rail : r["rails"]) {
+        if (rail["points"].empty())
+            continue;
+        md += "\n### Rail " + num(rail["id"]) + " (" + cell(rail["name"].get<std::string>()) +
+              ")\n\n| piece | row | column | t | position (m) | reaction (N) | magnitude (N) |\n"
+              "|---|---|---|---|---|---|---|\n";
+        for (const json& p : rail["points"])
+            md += "| " + num(p["piece"]) + " | " + num(p["row"]) + " | " + num(p["column"]) +
+                  " | " + g6(p["t"]) + " | " + vecText(p["position"]) + " | " +
+                  vecText(p["reaction"]) + " | " + g6(p["magnitude"]) + " |\n";
+    }
+    return md;
 }
 
 } // namespace
@@ -117,41 +228,13 @@ std::string reportMarkdown(const json& r) {
           (fb["within_tolerance"].get<bool>() ? "within" : "**not within**") + " the tolerance " +
           g6(fb["tolerance"]) + ". " + fb["note"].get<std::string>() + ".\n\n";
 
-    md += "## Pieces\n\n| id | name | rows x columns | closed | knots | bars | rope (m) | mass "
-          "(kg) | bar length (m) | top |\n"
-          "|---|---|---|---|---|---|---|---|---|---|\n";
-    for (const json& p : r["pieces"]) {
-        double lo = 0, hi = 0;
-        bool first = true;
-        for (const json& l : p["bar_lengths"]) {
-            const double v = l.get<double>();
-            lo = first ? v : std::min(lo, v);
-            hi = first ? v : std::max(hi, v);
-            first = false;
-        }
-        const std::string bar =
-            lo == hi ? g6(lo)
-                     : g6(lo) + " to " + g6(hi) + " by " + p["bar_axis"].get<std::string>();
-        md += "| " + num(p["id"]) + " | " + cell(p["name"].get<std::string>()) + " | " +
-              num(p["rows"]) + " x " + num(p["columns"]) + " | " +
-              (p["closed"].get<bool>() ? "yes" : "no") + " | " + num(p["knots"]) + " | " +
-              num(p["bars"]) + " | " + g6(p["rope_length"]) + " | " + g6(p["mass"]) + " | " + bar +
-              " | " + cell(topText(p["top"])) + " |\n";
-    }
-    md += "\n## Rails\n\n| id | name | length (m) | closed | attachments | reaction sum (N) | "
-          "largest reaction (N) |\n"
-          "|---|---|---|---|---|---|---|\n";
-    for (const json& rail : r["rails"])
-        md += "| " + num(rail["id"]) + " | " + cell(rail["name"].get<std::string>()) + " | " +
-              g6(rail["length"]) + " | " + (rail["closed"].get<bool>() ? "yes" : "no") + " | " +
-              num(rail["attachments"]) + " | " + vecText(rail["reaction"]) + " | " +
-              g6(rail["max_reaction"]) + " |\n";
-    return md;
+    return md + piecesMarkdown(r) + railsMarkdown(r) + attachmentsMarkdown(r);
 }
 
 std::string reportPiecesCsv(const json& r) {
     std::string csv =
-        "id,name,rows,columns,closed,knots,bars,rope_length,mass,bar_axis,bar_min,bar_max\n";
+        "id,name,rows,columns,closed,knots,bars,rope_length,mass,bar_axis,bar_min,bar_max,"
+        "bar_first,bar_last,max_tension,top,last_row\n";
     for (const json& p : r["pieces"]) {
         double lo = 0, hi = 0;
         bool first = true;
@@ -165,7 +248,10 @@ std::string reportPiecesCsv(const json& r) {
                "," + num(p["columns"]) + "," + (p["closed"].get<bool>() ? "1" : "0") + "," +
                num(p["knots"]) + "," + num(p["bars"]) + "," + num(p["rope_length"]) + "," +
                num(p["mass"]) + "," + p["bar_axis"].get<std::string>() + "," + io::numberText(lo) +
-               "," + io::numberText(hi) + "\n";
+               "," + io::numberText(hi) + "," + knottedEnds(p) + "," + num(p["max_tension"]) +
+               "," + csvField(topText(p["top"], r["rails"])) + "," +
+               csvField(p["bottom"].is_null() ? "free" : railEdgeText(p["bottom"], r["rails"])) +
+               "\n";
     }
     return csv;
 }

@@ -197,16 +197,99 @@ TEST_CASE("report as Markdown and CSV tables") {
     CHECK_THAT(md, Contains("| 1 | bar | 0.8 | no | 3 |"));
 
     const std::string pieces = reportPiecesCsv(r);
-    CHECK(pieces.rfind(
-              "id,name,rows,columns,closed,knots,bars,rope_length,mass,bar_axis,bar_min,bar_max\n",
-              0) == 0);
+    CHECK(pieces.rfind("id,name,rows,columns,closed,knots,bars,rope_length,mass,bar_axis,bar_min,"
+                       "bar_max,bar_first,bar_last,max_tension,top,last_row\n",
+                       0) == 0);
     CHECK(lineCount(pieces) == 2);
     CHECK_THAT(pieces, Contains("\n1,piece 1,4,3,0,12,15,"));
-    CHECK_THAT(pieces, Contains(",column,0.3,0.3\n"));
+    CHECK_THAT(pieces, Contains(",column,0.3,0.3,0.3,0.3,"));
+    CHECK_THAT(pieces, Contains(",\"rail 1 (bar), from 0 m along it (t = 0)\",free\n"));
     const std::string points = reportAttachmentsCsv(r);
     CHECK(points.rfind("rail,piece,row,column,t,x,y,z,fx,fy,fz,magnitude\n", 0) == 0);
     CHECK(lineCount(points) == 1 + 3);
     CHECK_THAT(points, Contains("\n1,1,0,2,1,"));
+    // Every attachment point in the Markdown too, after the rails' sign convention.
+    CHECK_THAT(md, Contains("the load on the rail is its opposite"));
+    CHECK_THAT(md, Contains("### Rail 1 (bar)"));
+    CHECK_THAT(md, Contains("\n| 1 | 0 | 0 | 0 | (0, 0, 0) | ("));
+    CHECK_THAT(md, Contains("\n| 1 | 0 | 2 | 1 | (0.8, 0, 0) | ("));
+}
+
+TEST_CASE("the report gives bar lengths as they are knotted, first to last") {
+    // A sheet split at column 12, its left part shorter towards the seam: listed from column 0,
+    // not smallest first.
+    SheetNet split = sheet(5, 25, 4.8, 0.3);
+    const PieceId left = edit(split.s, [&](Sculpture& s) {
+        const PieceId part = netsculpt::split(s, split.piece, 12).first;
+        setBarLength(s, part, 0, 0.25);
+        setBarLength(s, part, 12, 0.2);
+        return part;
+    });
+    split.compiled = compileSculpture(split.s);
+    json r = buildReport(split.s, split.compiled);
+    REQUIRE(r["pieces"][0]["id"] == left.value);
+    CHECK(r["pieces"][0]["bar_lengths_between_rows"].empty());
+    CHECK_THAT(reportMarkdown(r), Contains("| 0.25 at column 0 to 0.2 at column 12 |"));
+    CHECK_THAT(reportPiecesCsv(r), Contains(",column,0.2,0.25,0.25,0.2,"));
+
+    SheetNet t = sheet(5, 13, 2.4, 0.3);
+
+    // By row, 0.2 at row 0 to 0.4 at row 4: every bar between two rows has the mean of theirs,
+    // so the net maker knots 0.225 to 0.375, which the compiled bars must have.
+    edit(t.s, [&](Sculpture& s) {
+        setBarLengthByRow(s, t.piece, 0, 0.2);
+        setBarLengthByRow(s, t.piece, 4, 0.4);
+        return 0;
+    });
+    t.compiled = compileSculpture(t.s);
+    r = buildReport(t.s, t.compiled);
+    const json& between = r["pieces"][0]["bar_lengths_between_rows"];
+    REQUIRE(between.size() == 4);
+    const MassSpringSystem& sys = t.compiled.system;
+    for (std::size_t b = 0; b < sys.barCount(); ++b) {
+        const int upper = std::min(sys.refs[sys.refStart[sys.barA[b]]].row,
+                                   sys.refs[sys.refStart[sys.barB[b]]].row);
+        CHECK(sys.restLength[b] == Approx(between[upper].get<double>()).epsilon(1e-14));
+    }
+    CHECK(between[0].get<double>() == Approx(0.225).epsilon(1e-14));
+    CHECK(between[3].get<double>() == Approx(0.375).epsilon(1e-14));
+    CHECK_THAT(reportMarkdown(r),
+               Contains("| 0.225 between rows 0 and 1 to 0.375 between rows 3 and 4 |"));
+    CHECK_THAT(reportPiecesCsv(r), Contains(",row,0.2,0.4,0.225,0.375,"));
+}
+
+TEST_CASE("the report says where split parts start on their rail and who makes a seam's bars") {
+    // A ring of 12 columns split at 4: the part from column 4 starts a third of the way round.
+    Tube t = tubeWithChild(12, 5, 1.0, 0.4);
+    auto [a, b] = edit(t.s, [&](Sculpture& s) { return split(s, t.piece, 4); });
+    t.compiled = compileSculpture(t.s);
+    const json r = buildReport(t.s, t.compiled);
+    const double ring = r["rails"][0]["length"].get<double>();
+    const std::string md = reportMarkdown(r);
+    CHECK_THAT(md, Contains("rail 1 (ring), from 0 m along it (t = 0)"));
+    char second[80];
+    std::snprintf(second, sizeof second, "rail 1 (ring), from %.6g m along it (t = 0.333333)",
+                  ring / 3);
+    CHECK_THAT(md, Contains(second));
+    // Each seam column's 4 bars (5 rows) are made once: counted in one of the two parts, and
+    // the parts' bars with the child's add up to the sculpture's.
+    const MassSpringSystem& sys = t.compiled.system;
+    std::size_t counted = 0;
+    for (const json& p : r["pieces"])
+        for (const json& seam : p["seams"]) {
+            CHECK(seam["shared_bars"] == 4);
+            const PieceId owner{seam["shared_bars_counted_in"].get<std::uint32_t>()};
+            CHECK((owner == a || owner == b));
+            counted += owner.value == p["id"].get<std::uint32_t>() ? 1 : 0;
+        }
+    CHECK(counted == 2); // each of the two seams once from the side that owns its bars
+    CHECK_THAT(md, Contains("(the 4 bars along the seam counted in piece"));
+    // The largest tension of the pieces is the sculpture's.
+    double largest = 0;
+    for (const json& p : r["pieces"])
+        largest = std::max(largest, p["max_tension"].get<double>());
+    CHECK(largest == r["max_tension"].get<double>());
+    CHECK(sys.barCount() == r["bars"].get<std::size_t>());
 }
 
 TEST_CASE("the report flags bars stretched beyond what rope does, with the largest strain") {

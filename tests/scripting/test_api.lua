@@ -230,6 +230,26 @@ T.case("relax, export, report, save and open", function()
   local report = doc:report()
   T.eq(#report.pieces, 1); T.eq(report.pieces[1].knots, 96)
   T.near(report.total_weight, report.total_mass * 9.81, 1e-9)
+  -- the attachment points' table: one line per point held by the ring, its reactions summing
+  -- to the ring's
+  local points = doc:write_report("api/points.csv", {table = "attachments"})
+  local rows, fz = 0, 0
+  for line in io.lines(points) do
+    rows = rows + 1
+    if rows == 1 then
+      T.eq(line, "rail,piece,row,column,t,x,y,z,fx,fy,fz,magnitude")
+    else
+      local fields = {}
+      for field in line:gmatch("[^,]+") do fields[#fields + 1] = tonumber(field) end
+      fz = fz + fields[11]
+    end
+  end
+  T.eq(rows, 1 + 24)
+  T.near(fz, report.rails[1].reaction.z, 1e-9)
+  T.raises(function() doc:write_report("api/r.md", {table = "attachments"}) end,
+           "write_report: argument 'table' is for a .csv report")
+  T.raises(function() doc:write_report("api/r.csv", {table = "bars"}) end,
+           "write_report: argument 'table' must be", "\"pieces\" or \"attachments\", got \"bars\"")
   local path = doc:save("api/design.netj")
   local copy = ns.open(path)
   T.eq(copy:hash(), doc:hash())

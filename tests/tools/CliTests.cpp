@@ -4,6 +4,7 @@
 #include "CliSupport.h"
 
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include <fstream>
 
@@ -201,6 +202,22 @@ TEST_CASE("replay, to-lua, relax, export and report on a journal", "[cli]") {
     const Ran attachments = runCli("report " + quoted(snapshot) + " --csv attachments");
     CHECK(attachments.exitCode == 0);
     CHECK(csv.output != attachments.output);
+
+    // A journal holds no shape: the report relaxes it first, so its loads are the hanging net's.
+    const Ran fromJournal = runCli("report " + quoted(journal));
+    CHECK(fromJournal.exitCode == 0);
+    CHECK_THAT(fromJournal.output, Contains("holds no relaxed shape; relaxed it for the report: "
+                                            "converged") &&
+                                       Contains("Shape: **relaxed**"));
+    const Ran quietJson = runCli("report " + quoted(journal) + " --json -q");
+    REQUIRE(quietJson.exitCode == 0);
+    const nlohmann::json relaxedReport = nlohmann::json::parse(quietJson.output);
+    CHECK(relaxedReport["relaxed"] == true);
+    CHECK(relaxedReport["force_balance"]["within_tolerance"] == true);
+    const Ran asItIs = runCli("report " + quoted(journal) + " --no-relax --csv attachments");
+    CHECK(asItIs.exitCode == 0);
+    CHECK_THAT(asItIs.output, Contains("warning: the shape is not relaxed"));
+    CHECK(fs::file_size(journal) == journalBytes);
 
     const Ran broken = runCli("report " + quoted(dir / "none.netj"));
     CHECK(broken.exitCode == 1);

@@ -181,10 +181,38 @@ int exportDocument(const ExportArgs& a, Verbosity verbosity) {
     return 0;
 }
 
-int reportDocument(const fs::path& document, ReportFormat format) {
-    const Document doc = openDocument(document, Verbosity::Normal);
+namespace {
+
+/// Relaxes `doc` for the report when its shape is not an equilibrium (or warns, when asked not
+/// to): kExitNotConverged when that relaxation stopped short, else 0.
+int relaxForReport(Document& doc, const ReportArgs& a, Verbosity verbosity) {
+    if (doc.isRelaxed() || doc.compiled().system.knotCount() == 0)
+        return 0;
+    if (!a.relaxFirst) {
+        std::cerr << "netsculpt: warning: the shape is not relaxed: its tensions and rail loads "
+                     "are not those of the hanging net (report without --no-relax relaxes it)\n";
+        return 0;
+    }
+    DocumentRelaxOptions options;
+    ProgressLine progress(verbosity);
+    if (progress.enabled())
+        options.solver.progress = [&progress](const RelaxProgress& p) { progress.update(p); };
+    const RelaxResult result = doc.relax(options);
+    progress.finish(result);
+    if (verbosity != Verbosity::Quiet || !result.converged)
+        std::cerr << "netsculpt: " << a.document.string()
+                  << " holds no relaxed shape; relaxed it for the report: "
+                  << describeRelaxResult(result) << "\n";
+    return result.converged ? 0 : kExitNotConverged;
+}
+
+} // namespace
+
+int reportDocument(const ReportArgs& a, Verbosity verbosity) {
+    Document doc = openDocument(a.document, verbosity);
+    const int exitCode = relaxForReport(doc, a, verbosity);
     const nlohmann::json report = buildReport(doc);
-    switch (format) {
+    switch (a.format) {
     case ReportFormat::Markdown:
         std::cout << reportMarkdown(report);
         break;
@@ -198,7 +226,7 @@ int reportDocument(const fs::path& document, ReportFormat format) {
         std::cout << reportAttachmentsCsv(report);
         break;
     }
-    return 0;
+    return exitCode;
 }
 
 } // namespace netsculpt::cli

@@ -54,6 +54,14 @@ struct ExportArgs {
 int exportDocument(const ExportArgs& a, Verbosity verbosity);
 
 enum class ReportFormat { Markdown, Json, PiecesCsv, AttachmentsCsv };
-int reportDocument(const std::filesystem::path& document, ReportFormat format);
+struct ReportArgs {
+    std::filesystem::path document;
+    ReportFormat format = ReportFormat::Markdown;
+    /// Relax a shape that is not an equilibrium before reporting it (a journal holds none: its
+    /// loads would be those of the Eq. 2 start); false: report it as it is, with a warning.
+    bool relaxFirst = true;
+};
+/// Prints the report: 0, or kExitNotConverged when the relaxation it ran stopped short.
+int reportDocument(const ReportArgs& a, Verbosity verbosity);
 
 } // namespace netsculpt::cli

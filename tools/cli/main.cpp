@@ -28,7 +28,7 @@ struct Options {
     std::filesystem::path replayOut;
     RelaxArgs relax;
     ExportArgs exporting;
-    std::filesystem::path reportDocument;
+    ReportArgs report;
     bool reportJson = false;
     std::string reportCsv;
 };
@@ -133,8 +133,11 @@ void addExport(CLI::App& app, Options& o) {
 void addReport(CLI::App& app, Options& o) {
     CLI::App* report =
         app.add_subcommand("report", "Print the fabrication and load report (Markdown by default)");
-    report->add_option("document", o.reportDocument, "A journal (.netj) or snapshot (.nets)")
+    report->add_option("document", o.report.document, "A journal (.netj) or snapshot (.nets)")
         ->required();
+    report->add_flag("!--no-relax", o.report.relaxFirst,
+                     "Report the shape as it is; without it a shape that is not relaxed (a "
+                     "journal's) is relaxed first");
     auto* json = report->add_flag("--json", o.reportJson, "Print the report as JSON");
     report->add_option("--csv", o.reportCsv, "Print a table as CSV: pieces or attachments")
         ->expected(0, 1)
@@ -158,13 +161,13 @@ int dispatch(const CLI::App& app, const Options& o) {
     if (app.got_subcommand("export"))
         return exportDocument(o.exporting, verbosity);
     const CLI::App* report = app.get_subcommand("report");
-    ReportFormat format = ReportFormat::Markdown;
+    ReportArgs args = o.report;
     if (o.reportJson)
-        format = ReportFormat::Json;
+        args.format = ReportFormat::Json;
     else if (report->count("--csv") > 0)
-        format =
+        args.format =
             o.reportCsv == "attachments" ? ReportFormat::AttachmentsCsv : ReportFormat::PiecesCsv;
-    return reportDocument(o.reportDocument, format);
+    return reportDocument(args, verbosity);
 }
 
 } // namespace
