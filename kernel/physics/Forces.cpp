@@ -201,6 +201,7 @@ void ForceField::setLoad(const std::optional<Wind>& wind, double stiffnessScale)
         throw UserError("stiffness scale must be finite and > 0, got " +
                         formatNumber(stiffnessScale));
     hasWind_ = false;
+    windFrozen_ = false;
     if (wind) {
         windDirection_ = validatedWindDirection(*wind);
         windPressure_ = wind->pressure;
@@ -243,11 +244,47 @@ void ForceField::computeBars(const Vec3* positions, std::size_t begin, std::size
         if (tension)
             tension[b] = f.tension;
     }
-    if (hasWind_)
+    if (hasWind_ && !windFrozen_)
         for (b = begin; b < end; ++b) {
             const Vec3 d = at(positions, ends[2 * b + 1]) - at(positions, ends[2 * b]);
             barWind_[b] = windOnBar(windDirection_, windPressure_, d) * 0.5; // half to each end
         }
+}
+
+void ForceField::windChange(std::span<const Vec3> positions, std::span<const Vec3> move,
+                            std::span<Vec3> out) const {
+    std::fill(out.begin(), out.end(), Vec3{});
+    if (!hasWind_)
+        return;
+    const Vec3& w = windDirection_;
+    for (std::size_t b = 0; b < barCount(); ++b) {
+        const std::uint32_t a = barEndA(b), e = barEndB(b);
+        const Vec3 d = positions[e] - positions[a];
+        const double length = d.norm();
+        if (!(length > 0))
+            continue;
+        // The bar's load q L (w - (w.u) u) changes with its vector by
+        // q [w u^T - u w^T - (w.u) (I - u u^T)]; half of it goes to each end.
+        const Vec3 u = d / length, dv = move[e] - move[a];
+        const double wu = w.dot(u), udv = u.dot(dv);
+        const Vec3 change =
+            (w * udv - u * w.dot(dv) - (dv - u * udv) * wu) * (0.5 * windPressure_);
+        out[a] += change;
+        out[e] += change;
+    }
+}
+
+void ForceField::freezeWind(std::span<const Vec3> positions) {
+    assert(positions.size() == knotCount());
+    if (!hasWind_)
+        return;
+    windFrozen_ = false;
+    const std::uint32_t* const ends = endOffsets_.data();
+    for (std::size_t b = 0; b < barCount(); ++b) {
+        const Vec3 d = at(positions.data(), ends[2 * b + 1]) - at(positions.data(), ends[2 * b]);
+        barWind_[b] = windOnBar(windDirection_, windPressure_, d) * 0.5;
+    }
+    windFrozen_ = true;
 }
 
 std::pair<std::size_t, std::size_t> ForceField::streamBarRange(std::size_t begin,

@@ -67,6 +67,25 @@ class ForceField {
     /// the stiffness scale s (> 0; 1 = the material).
     void setLoad(const std::optional<Wind>& wind, double stiffnessScale = 1.0);
     double stiffnessScale() const { return scale_; }
+    /// With wind: takes the wind's load at `positions` (knotCount() entries) and keeps it, as a
+    /// fixed load, in the evaluations that follow until thawWind(): a load with a potential
+    /// (-its dot product with the positions), so a solver can measure an energy along a step.
+    void freezeWind(std::span<const Vec3> positions);
+    /// Evaluations take the wind at the positions they are given again (the default).
+    void thawWind() { windFrozen_ = false; }
+    /// out[j] = the change of the wind's load on knot j (N) when the knots at `positions` move
+    /// by `move` (m), to first order: the wind's part of the force's Jacobian, which has no
+    /// symmetric form (a load that turns with the bars). Fixed knots' `move` must be 0.
+    void windChange(std::span<const Vec3> positions, std::span<const Vec3> move,
+                    std::span<Vec3> out) const;
+    /// The wind's load on knot j, N: the frozen one (or the last evaluation's).
+    Vec3 knotWind(std::size_t j) const {
+        Vec3 load{};
+        if (hasWind_)
+            for (std::uint32_t k = adjacencyStart_[j], e = adjacencyStart_[j + 1]; k < e; ++k)
+                load += barWind_[adjacency_[k] >> 1];
+        return load;
+    }
 
     /// Phase 1 of an evaluation, bars [begin, end): each bar's force on its ends (spring of
     /// Eq. 3 and wind). tension, if not null, receives s k (l - l_eq) per bar in N (< 0:
@@ -145,6 +164,7 @@ class ForceField {
     std::size_t unmaskedEnd_ = 0;             ///< bars before it do not touch the last knot
     double scale_ = 1.0;
     bool hasWind_ = false;
+    bool windFrozen_ = false; ///< barWind_ kept from freezeWind()
     Vec3 windDirection_;      ///< unit
     double windPressure_ = 0; ///< N/m
 };

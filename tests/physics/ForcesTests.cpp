@@ -145,6 +145,61 @@ TEST_CASE("Wind loads each bar by q L times the wind's part normal to it, half p
     CHECK_THROWS_AS(knotForces(s, Wind{{NAN, 0, 0}, 1}), UserError);
 }
 
+TEST_CASE("The wind's change with the knots' moves is the derivative of its load, and a frozen "
+          "wind stays where it was taken",
+          "[forces]") {
+    const MassSpringSystem s = perturbedSheet(5, 6);
+    const Wind wind{{1, 0.4, -0.2}, 0.7};
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> unit(-1, 1);
+    std::vector<Vec3> move(s.knotCount());
+    for (std::size_t j = 0; j < s.knotCount(); ++j)
+        move[j] = s.fixed[j] ? Vec3{} : Vec3{unit(random), unit(random), unit(random)};
+    // The wind's load alone: the forces with it less those without.
+    const auto windLoad = [&](double along) {
+        MassSpringSystem moved = s;
+        for (std::size_t j = 0; j < s.knotCount(); ++j)
+            moved.position[j] += move[j] * along;
+        const std::vector<Vec3> windy = knotForces(moved, wind), calm = knotForces(moved);
+        std::vector<Vec3> load(s.knotCount());
+        for (std::size_t j = 0; j < s.knotCount(); ++j)
+            load[j] = windy[j] - calm[j];
+        return load;
+    };
+    ForceField field(s);
+    field.setLoad(wind);
+    std::vector<Vec3> change(s.knotCount());
+    field.windChange(s.position, move, change);
+    const double h = 1e-6;
+    const std::vector<Vec3> ahead = windLoad(h), behind = windLoad(-h);
+    double largest = 0;
+    for (std::size_t j = 0; j < s.knotCount(); ++j) {
+        const Vec3 centred = (ahead[j] - behind[j]) / (2 * h);
+        CHECK((change[j] - centred).norm() < 1e-7);
+        largest = std::max(largest, centred.norm());
+    }
+    CHECK(largest > 0.01); // the moves do change the load
+
+    // Frozen at the start, the load is the start's wherever the knots are evaluated.
+    const std::vector<Vec3> startLoad = windLoad(0);
+    field.freezeWind(s.position);
+    MassSpringSystem moved = s;
+    for (std::size_t j = 0; j < s.knotCount(); ++j)
+        moved.position[j] += move[j] * 0.1;
+    std::vector<Vec3> frozen(s.knotCount());
+    field.evaluate(moved.position, frozen);
+    const std::vector<Vec3> calm = knotForces(moved);
+    for (std::size_t j = 0; j < s.knotCount(); ++j) {
+        CHECK((frozen[j] - calm[j] - startLoad[j]).norm() < 1e-12);
+        CHECK((field.knotWind(j) - startLoad[j]).norm() < 1e-12);
+    }
+    field.thawWind();
+    field.evaluate(moved.position, frozen);
+    const std::vector<Vec3> thawed = knotForces(moved, wind);
+    for (std::size_t j = 0; j < s.knotCount(); ++j)
+        CHECK((frozen[j] - thawed[j]).norm() < 1e-12);
+}
+
 TEST_CASE("Bar forces are internal: the knot forces sum to the weight in any state", "[forces]") {
     const MassSpringSystem s = perturbedSheet(7, 9);
     Vec3 sum;

@@ -58,9 +58,11 @@
 //   net well; CHOLMOD's symbolic analysis; done once per topology and kept by the relaxer
 //   between calls; own numeric factorization). The geometric ordering takes a fifth to a third
 //   of METIS's time, and its factor costs 1-5% fewer flops on the benchmark's nets.
-// - Wind is a position-dependent load without a potential: it enters the force (and so each
-//   Newton step) at the current positions, a fixed point iteration around Newton; with wind the
-//   line search accepts on the residual instead of the energy.
+// - Wind is a position-dependent load without a potential (it turns with the bars). Each step
+//   solves the Newton system with the wind's part of the Jacobian, which is not symmetric, by
+//   GMRES with the Cholesky factor as its preconditioner (WindSteps.cpp), and the line search
+//   measures the energy with the wind's load frozen where the step starts. Without that part a
+//   free net in a wind of a fair part of its weight did not converge.
 //
 // Converged means what it means for every backend: the residual of Eq. 3 at the material's
 // stiffness (physics/Forces.h residual(), max over free knots of |F_j| / (m_j |g|)) below the

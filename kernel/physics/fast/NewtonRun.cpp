@@ -338,19 +338,10 @@ double NewtonRun::energyChange(double alpha) {
         change += term;
     for (std::uint32_t j : analysis_.freeKnots)
         change -= (system_.gravity * system_.mass[j]).dot(displacement(j, alpha));
+    if (windy_) // the load searchLine froze
+        for (std::uint32_t j : analysis_.freeKnots)
+            change -= field_.knotWind(j).dot(displacement(j, alpha));
     return change;
-}
-
-/// Sum over free knots of (|F_j| / (m_j |g|))^2 at `at` (the wind's merit), force_ overwritten.
-double NewtonRun::meritOf(const std::vector<Vec3>& at) {
-    field_.evaluate(at, force_, pool_.get());
-    ++evaluations_;
-    double sum = 0;
-    for (std::uint32_t j : analysis_.freeKnots) {
-        const double r = force_[j].norm() / weightOf_[j];
-        sum += r * r;
-    }
-    return std::isfinite(sum) ? sum : std::numeric_limits<double>::infinity();
 }
 
 namespace {

@@ -29,6 +29,10 @@ namespace netsculpt::newton {
 // few per cent at the top of a net; the same floor as RK4's first continuation stage). No soft
 // stage when that would not soften the material by at least kMaxSoftScale.
 constexpr double kSoftLoadFactor = 20;
+// Under wind a step solves (M - G) d = F by GMRES with M's factor (WindSteps.cpp): at most
+// kWindKrylovVectors vectors, to kWindKrylovTolerance of the frozen wind's step.
+constexpr int kWindKrylovVectors = 30;
+constexpr double kWindKrylovTolerance = 1e-6;
 constexpr double kMaxSoftScale = 0.1;
 // Then, for a slack net only, stages kStageFactor times stiffer each (the last intermediate one
 // at least sqrt(kStageFactor) below the material's): a tension-dominated net needs none (the jump
@@ -228,6 +232,10 @@ class NewtonRun {
     void assemble(bool mixed, bool exact);
     bool factorize();
     void solve();
+    /// With wind: step_ turned from M^-1 F into the solution of (M - G) d = F, G the wind's part of
+    /// the force's Jacobian (WindSteps.cpp), when the energy with the wind frozen falls along it.
+    void correctStepForWind();
+    void applyWindOperator(const std::vector<double>& v, std::vector<double>& out);
     void solveInto(std::vector<Vec3>& out);
     void multiplyStep(std::vector<double>& out) const;
     bool refineSingleStep(double tolerance);
@@ -245,7 +253,6 @@ class NewtonRun {
         return thirdOrder_ ? second + bendThird_[j] * (alpha * alpha * alpha / 6) : second;
     }
     double energyChange(double alpha);
-    double meritOf(const std::vector<Vec3>& at);
     double takeStep(double alpha, bool mixed);
     void hintedStart(double tolerance);
     void setHintedLaw();
@@ -304,6 +311,7 @@ class NewtonRun {
     std::vector<double>& dampingUnit_; ///< per free knot: m_j |g| / (mean rest length), N/m
     double meanDiagonal_ = 1;
     bool windy_ = false;
+    std::vector<Vec3> windMove_, windLoad_, windStep_; ///< per knot (WindSteps.cpp)
     std::int64_t steps_ = 0, evaluations_ = 0;
     double lastProgress_ = -std::numeric_limits<double>::infinity();
     std::string stopReason_;
