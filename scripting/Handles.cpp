@@ -19,6 +19,7 @@ struct DocumentBox {
 
 struct HandleBox {
     std::uint32_t id = 0;
+    std::uint64_t birth = 0; ///< Document::birth of the id when the handle was made
 };
 
 DocumentBox* toDocument(lua_State* L, int index) {
@@ -56,9 +57,20 @@ int handleToString(lua_State* L) {
     return 1;
 }
 
+/// Handles compare equal by id; within a document also by birth (a piece made again with the id
+/// of an undone one is another piece).
 int handleEq(lua_State* L) {
     const std::string a = describeHandle(L, 1), b = describeHandle(L, 2);
-    lua_pushboolean(L, !a.empty() && a == b);
+    bool same = !a.empty() && a == b;
+    if (same) {
+        const auto* x = static_cast<const HandleBox*>(lua_touserdata(L, 1));
+        const auto* y = static_cast<const HandleBox*>(lua_touserdata(L, 2));
+        lua_getiuservalue(L, 1, 1);
+        lua_getiuservalue(L, 2, 1);
+        same = x->birth == y->birth || lua_rawequal(L, -1, -2) == 0;
+        lua_pop(L, 2);
+    }
+    lua_pushboolean(L, same);
     return 1;
 }
 
@@ -88,18 +100,27 @@ void newHandleType(lua_State* L, const char* type, void (*addMethods)(lua_State*
     lua_pop(L, 1);
 }
 
+/// Document::birth of a piece or rail id.
+std::uint64_t birthOf(lua_State* L, int docIndex, const char* type, std::uint32_t id) {
+    const Document& doc = toDocument(L, docIndex)->doc;
+    return type == kPieceType ? doc.birth(PieceId(id)) : doc.birth(RailId(id));
+}
+
 void pushHandle(lua_State* L, int docIndex, const char* type, int cache, std::uint32_t id) {
     docIndex = lua_absindex(L, docIndex);
+    const std::uint64_t birth = birthOf(L, docIndex, type, id);
     lua_getiuservalue(L, docIndex, 1);
     lua_rawgeti(L, -1, cache);
     lua_remove(L, -2);
-    if (lua_rawgeti(L, -1, id) == LUA_TUSERDATA) {
+    if (lua_rawgeti(L, -1, id) == LUA_TUSERDATA &&
+        static_cast<const HandleBox*>(lua_touserdata(L, -1))->birth == birth) {
         lua_remove(L, -2);
         return;
     }
     lua_pop(L, 1);
     auto* box = static_cast<HandleBox*>(lua_newuserdatauv(L, sizeof(HandleBox), 1));
     box->id = id;
+    box->birth = birth;
     luaL_setmetatable(L, type);
     lua_pushvalue(L, docIndex);
     lua_setiuservalue(L, -2, 1);
@@ -125,14 +146,18 @@ std::uint32_t checkHandle(const Call& call, int index, const char* arg, int docI
                   " of another sculpture");
     const Sculpture& s = toDocument(L, docIndex)->doc.sculpture();
     const bool piece = type == kPieceType;
-    const bool alive = piece ? s.hasPiece(PieceId(box->id)) : s.hasRail(RailId(box->id));
-    if (!alive) {
+    const bool present = piece ? s.hasPiece(PieceId(box->id)) : s.hasRail(RailId(box->id));
+    const bool itself = box->birth == birthOf(L, docIndex, type, box->id);
+    if (!present || !itself) {
         const std::uint32_t next = piece ? s.nextPieceId : s.nextRailId;
         const std::string what =
             arg == nullptr ? std::string() : std::string("argument '") + arg + "': ";
+        const bool removed = box->id < next && itself;
         call.fail(what + describeHandle(L, index) +
-                  (box->id < next ? " was removed"
-                                  : " no longer exists (the call that made it was undone)"));
+                  (removed ? " was removed"
+                           : " no longer exists (the call that made it was undone; its id now "
+                             "names another " +
+                                 std::string(kindOf(type)) + " or none)"));
     }
     return box->id;
 }

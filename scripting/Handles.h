@@ -8,7 +8,9 @@
 // A piece or rail handle is a full userdata {id} (metatables "netsculpt.Piece" and
 // "netsculpt.Rail") whose user value is its document, which it keeps alive. Handles print as
 // "piece 3" / "rail 1", compare equal by id, and are checked for liveness on every use: a
-// removed one raises "piece 7 was removed".
+// removed one raises "piece 7 was removed". A handle also holds the id's Document::birth: when
+// the call that made its piece is undone and another piece gets the id, the old handle stays
+// dead ("no longer exists") instead of naming the new piece, and the two are not equal.
 
 #include "commands/Document.h"
 #include "scripting/LuaSupport.h"

@@ -13,6 +13,7 @@
 #include <iostream>
 #include <optional>
 #include <sstream>
+#include <unordered_map>
 
 namespace netsculpt {
 
@@ -43,6 +44,7 @@ struct Step {
     std::vector<CommandResult> results;
     std::vector<int> lines; ///< journal lines the commands were replayed from (0 = executed)
     Sculpture after;
+    std::uint64_t serial = 0; ///< numbers the steps a document ever took, from 1 (never reused)
 };
 
 enum class MergeMode { Never, IfGesture, Required };
@@ -91,6 +93,10 @@ struct Document::State {
     bool gestureOpen = false;
     std::vector<JournalEntry> log; ///< every entry since the document began: what its journal holds
     std::unique_ptr<Journal> journal;
+    std::uint64_t nextSerial = 1; ///< Step::serial of the next step
+    /// The serial of the step that last created each id (birth()): an id made again after its
+    /// step was undone has a new one.
+    std::unordered_map<std::uint32_t, std::uint64_t> pieceBirth, railBirth;
 
     State() : memos(1), compiled(compileSculpture(base)) {}
 
@@ -140,6 +146,13 @@ struct Document::State {
 
         Sculpture work = current();
         CommandResult result = applyCommand(work, command);
+        // A split keeps the piece's id for its first part: only ids new to the sculpture are born.
+        std::vector<PieceId> bornPieces;
+        std::vector<RailId> bornRails;
+        for (PieceId id : result.pieces)
+            if (!current().hasPiece(id)) bornPieces.push_back(id);
+        for (RailId id : result.rails)
+            if (!current().hasRail(id)) bornRails.push_back(id);
         refreshAndValidate(work);
         std::optional<CompiledSculpture> next;
         if (compile) next = compileSculpture(work);
@@ -165,10 +178,12 @@ struct Document::State {
         } else {
             dropRedoBranch();
             setMemo(index, std::move(leaving));
-            steps.push_back(Step{{command}, {result}, {line}, std::move(work)});
+            steps.push_back(Step{{command}, {result}, {line}, std::move(work), nextSerial++});
             memos.emplace_back();
             ++index;
         }
+        for (PieceId id : bornPieces) pieceBirth[id.value] = steps[index - 1].serial;
+        for (RailId id : bornRails) railBirth[id.value] = steps[index - 1].serial;
         if (next) installCompiled(std::move(*next));
         log.push_back(std::move(entry));
         gestureOpen = true;
@@ -360,6 +375,14 @@ CommandResult Document::execute(const Command& command, bool merge) {
 
 bool Document::canUndo() const { return state_->index > 0; }
 bool Document::canRedo() const { return state_->index < state_->steps.size(); }
+std::uint64_t Document::birth(PieceId id) const {
+    const auto it = state_->pieceBirth.find(id.value);
+    return it == state_->pieceBirth.end() ? 0 : it->second;
+}
+std::uint64_t Document::birth(RailId id) const {
+    const auto it = state_->railBirth.find(id.value);
+    return it == state_->railBirth.end() ? 0 : it->second;
+}
 std::size_t Document::undoableSteps() const { return state_->index; }
 std::size_t Document::redoableSteps() const { return state_->steps.size() - state_->index; }
 void Document::undo() { state_->undoRedo(true, true); }

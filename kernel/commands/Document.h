@@ -54,6 +54,11 @@ class Document {
     bool canRedo() const;
     void undo(); ///< UserError when there is nothing to undo
     void redo(); ///< UserError when there is nothing to redo
+    /// Tells apart the pieces (rails) that have had an id: an id made again after the step that
+    /// made it was undone has another birth, one brought back by redo() the same. A number for
+    /// an id of the current sculpture; 0 for one never made.
+    std::uint64_t birth(PieceId id) const;
+    std::uint64_t birth(RailId id) const;
     std::size_t undoableSteps() const; ///< how many undo() calls in a row can succeed
     std::size_t redoableSteps() const; ///< how many redo() calls in a row can succeed
     /// Ends the current merge run: the next execute(…, merge = true) starts a new undo step.

@@ -15,7 +15,7 @@ struct Sculpture {
     std::map<RailId, Rail> rails;     ///< ordered by id: iteration order is deterministic
     std::map<PieceId, Piece> pieces;  ///< ordered by id
     std::vector<Seam> seams;
-    std::uint32_t nextRailId = 1;     ///< ids are never reused
+    std::uint32_t nextRailId = 1;     ///< ids are never reused within one line of edits
     std::uint32_t nextPieceId = 1;
     Vec3 gravity{0, 0, -9.81};        ///< m/s^2
 

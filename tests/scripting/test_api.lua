@@ -139,6 +139,37 @@ T.case("handles: identity, keys, liveness, other documents", function()
   T.eq(p:info().rows, 3) -- alive again
 end)
 
+T.case("a handle to an undone piece stays dead when another piece gets its id", function()
+  local doc = ns.new()
+  local ring = doc:add_rail{points = T.circle(1, 3, 16), closed = true}
+  local beam = doc:add_rail{points = {{0, 0, 3}, {3, 0, 3}}}
+  local tube = doc:attach_to_rail{rail = ring, columns = 12, rows = 6, bar = 0.3}
+  doc:undo()
+  T.raises(function() tube:info() end, "info: piece 1 no longer exists (the call that made it was undone")
+  local sheet = doc:attach_to_rail{rail = beam, columns = 11, rows = 4, bar = 0.3}
+  T.eq(sheet.id, tube.id) -- the id is given again ...
+  T.check(sheet ~= tube, "... to another piece")
+  T.raises(function() doc:set_rows{piece = tube, rows = 20} end,
+           "set_rows: argument 'piece': piece 1 no longer exists")
+  T.eq(sheet:info().rows, 4) -- the sheet is untouched
+  -- undo and redo bring back the same piece: its old handles work again
+  doc:undo()
+  doc:redo()
+  T.eq(sheet:info().rows, 4)
+  T.check(rawequal(doc:pieces()[1], sheet))
+  -- a split keeps the piece's id for its first part: the handle still names it
+  local a, b = doc:split{piece = sheet, column = 5}
+  T.check(rawequal(a, sheet))
+  T.eq(sheet:info().columns, 6)
+  doc:undo()
+  T.raises(function() b:info() end, "no longer exists")
+  local a2, b2 = doc:split{piece = sheet, column = 3}
+  T.eq(b2.id, b.id)
+  T.check(b2 ~= b)
+  T.raises(function() b:info() end, "no longer exists")
+  T.eq(b2:info().columns, 11 - 3)
+end)
+
 T.case("edits: material, colour, rename, connect, gravity", function()
   local doc = ns.new()
   local top = doc:add_rail{points = T.circle(2, 5, 48), closed = true}
