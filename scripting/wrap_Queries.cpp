@@ -181,6 +181,8 @@ int h_rail_point(Call& call) {
     RailId id;
     const int docIndex = handleDocument(call, id);
     const double t = checkFinite(call, 2, "t");
+    if (!(t >= 0 && t <= 1))
+        call.bad("t", 2, "a rail position from 0 to 1 (the fraction of the rail's length)");
     pushVec3(call.L, checkDocument(call, docIndex).sculpture().rail(id).curve().pointAt(t));
     return 1;
 }

@@ -35,6 +35,19 @@ void checkPosition(double t) {
     if (!std::isfinite(t)) throw UserError("rail position must be a finite number, got " + formatNumber(t));
 }
 
+/// A rail position on `rail` (DESIGN.md: t in [0, 1), the fraction of its length from its first
+/// point; 1 is let through as the same point as 0 on a closed rail, the far end on an open one,
+/// whose edges are checked where they are laid out).
+void checkPositionOn(const Sculpture& s, RailId id, double t) {
+    checkPosition(t);
+    if (t >= 0 && t <= 1)
+        return;
+    const std::string& name = s.rail(id).name;
+    const std::string rail = name == toString(id) ? name : toString(id) + " (" + name + ")";
+    throw UserError("rail position 'at' on " + rail + " must be from 0 to 1 (the fraction of the "
+                    "rail's length from its first point), got " + formatNumber(t));
+}
+
 Piece newPiece(Sculpture& s, int rows, double bar) {
     Piece p;
     p.id = PieceId(s.nextPieceId++);
@@ -105,7 +118,7 @@ PieceId attachToRail(Sculpture& s, const AttachToRailArgs& a) {
     const Rail& rail = s.rail(a.rail);
     checkRows(a.rows);
     checkLength(a.bar, "bar length");
-    checkPosition(a.at);
+    checkPositionOn(s, a.rail, a.at);
     const bool closed = rail.curve().closed();
     int columns = a.columns;
     if (columns == 0) {
@@ -282,7 +295,7 @@ void setBarLengthByRow(Sculpture& s, PieceId id, int row, double length) {
 void connectToRail(Sculpture& s, PieceId id, RailId railId, double at, bool reverse) {
     const Piece& p = s.piece(id);
     const Rail& rail = s.rail(railId);
-    checkPosition(at);
+    checkPositionOn(s, railId, at);
     if (p.closed && !rail.curve().closed())
         throw UserError("connect_to_rail: " + toString(id) + " is a closed tube and " + toString(railId) + " (" + rail.name + ") is open; a tube connects to a closed rail");
     const double step = (p.closed && rail.curve().closed()) ? 1.0 / p.columns : topSpacing(s, id) / rail.curve().length();

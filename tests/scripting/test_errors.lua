@@ -51,6 +51,18 @@ T.case("numbers and lengths", function()
         "set_colour: argument 'colour'", "from 0 to 1, got 2")
 end)
 
+T.case("rail positions outside the rail", function()
+  fails(here(), function() doc:attach_to_rail{rail = ring, columns = 12, rows = 3, at = 1.5} end,
+        "attach_to_rail: rail position 'at' on rail 1 (ring) must be from 0 to 1", "got 1.5")
+  fails(here(), function() doc:attach_to_rail{rail = ring, columns = 12, rows = 3, at = -0.1} end,
+        "got -0.1")
+  fails(here(), function() doc:connect_to_rail{piece = p, rail = ring, at = 1e13} end,
+        "connect_to_rail: rail position 'at' on rail 1 (ring) must be from 0 to 1", "got 1e+13")
+  fails(here(), function() return ring:point(2) end,
+        "point: argument 't' must be a rail position from 0 to 1", "got 2")
+  fails(here(), function() return ring:point(-1e300) end, "got -1e+300")
+end)
+
 T.case("missing, unknown and misspelt arguments", function()
   fails(here(), function() doc:attach_to_rail{rail = ring, rows = 3} end,
         "attach_to_rail: argument 'columns' (or 'spacing') is missing")
