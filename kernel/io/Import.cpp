@@ -124,11 +124,44 @@ std::string withoutByteOrderMark(std::string text) {
     return text;
 }
 
+/// Where a rail CSV's fields are: x, y, z and the rail's name (-1: none, one rail per file).
+struct CsvColumns {
+    int rail = -1, x = 0, y = 1, z = 2;
+};
+
+/// The columns a header line names: x, y and z once each, rail at most once, nothing else.
+CsvColumns readCsvHeader(const std::string& file, std::size_t lineNo, std::string_view line,
+                         const std::vector<std::string>& fields) {
+    CsvColumns at{-1, -1, -1, -1};
+    for (std::size_t c = 0; c < fields.size(); ++c) {
+        std::string name = fields[c];
+        std::transform(name.begin(), name.end(), name.begin(), ::tolower);
+        int* column = name == "x"      ? &at.x
+                      : name == "y"    ? &at.y
+                      : name == "z"    ? &at.z
+                      : name == "rail" ? &at.rail
+                                       : nullptr;
+        if (column == nullptr || *column >= 0)
+            throw UserError(file + ":" + std::to_string(lineNo) + ": the header " +
+                            io::quoted(line, 80) + " has " +
+                            (column == nullptr ? "a column " : "twice the column ") +
+                            io::quoted(name, 40) +
+                            "; a rail file's columns are x, y, z and optionally rail (a knots "
+                            "export is no rail file)");
+        *column = int(c);
+    }
+    if (at.x < 0 || at.y < 0 || at.z < 0)
+        throw UserError(file + ":" + std::to_string(lineNo) + ": the header " +
+                        io::quoted(line, 80) +
+                        " must name columns x, y and z (and optionally rail)");
+    return at;
+}
+
 std::vector<io::SourcedCurve> readCsv(const std::filesystem::path& path) {
     const std::string file = io::displayName(path);
     const std::string text = withoutByteOrderMark(io::readWholeFile(path));
     checkText(file, text);
-    int columnRail = -1, columnX = 0, columnY = 1, columnZ = 2;
+    CsvColumns at;
     std::size_t expected = 3;
     bool sawHeader = false;
     std::vector<std::string> order;                  // rail names, first appearance
@@ -144,23 +177,7 @@ std::vector<io::SourcedCurve> readCsv(const std::filesystem::path& path) {
         auto fields = splitFields(line, ',');
         if (!sawHeader && points.empty() && !io::parseDouble(fields[0])) {
             sawHeader = true;
-            columnX = columnY = columnZ = -1;
-            for (std::size_t c = 0; c < fields.size(); ++c) {
-                std::string name = fields[c];
-                std::transform(name.begin(), name.end(), name.begin(), ::tolower);
-                if (name == "x")
-                    columnX = int(c);
-                else if (name == "y")
-                    columnY = int(c);
-                else if (name == "z")
-                    columnZ = int(c);
-                else if (name == "rail")
-                    columnRail = int(c);
-            }
-            if (columnX < 0 || columnY < 0 || columnZ < 0)
-                throw UserError(file + ":" + std::to_string(lineNo) + ": the header " +
-                                io::quoted(line, 80) +
-                                " must name columns x, y and z (and optionally rail)");
+            at = readCsvHeader(file, lineNo, line, fields);
             expected = fields.size();
             continue;
         }
@@ -170,12 +187,12 @@ std::vector<io::SourcedCurve> readCsv(const std::filesystem::path& path) {
                             std::to_string(expected) +
                             (sawHeader ? " (as in the header)"
                                        : " (x,y,z; give a header line to add a rail column)"));
-        const std::string rail = columnRail >= 0 ? fields[std::size_t(columnRail)] : stem;
+        const std::string rail = at.rail >= 0 ? fields[std::size_t(at.rail)] : stem;
         if (rail.empty())
             throw UserError(file + ":" + std::to_string(lineNo) + ": the rail column is empty");
-        const Vec3 p{coordinate(file, lineNo, fields[std::size_t(columnX)], "x"),
-                     coordinate(file, lineNo, fields[std::size_t(columnY)], "y"),
-                     coordinate(file, lineNo, fields[std::size_t(columnZ)], "z")};
+        const Vec3 p{coordinate(file, lineNo, fields[std::size_t(at.x)], "x"),
+                     coordinate(file, lineNo, fields[std::size_t(at.y)], "y"),
+                     coordinate(file, lineNo, fields[std::size_t(at.z)], "z")};
         if (!points.count(rail)) {
             order.push_back(rail);
             firstLine[rail] = lineNo;
