@@ -141,11 +141,11 @@ TEST_CASE("bad CSV and OBJ files give an error with the file and line, and no ra
     fails("nan.csv", "0,0,0\n1,nan,0\n", ":2: y is 'nan'");
     fails("word.csv", "0,0,0\n1,two,0\n", ":2: y 'two' is not a number");
     fails("short.csv", "0,0,0\n1,0\n", ":2: 2 fields, expected 3");
-    fails("header.csv", "a,b,c\n1,2,3\n", ":1: the header \"a,b,c\" has a column \"a\"");
+    fails("header.csv", "a,b,c\n1,2,3\n", ":1: the header 'a,b,c' has a column 'a'");
     fails("knots.csv", "piece,row,column,x,y,z,fixed\n1,0,0,0,0,3,1\n",
-          "has a column \"piece\"; a rail file's columns are x, y, z and optionally rail");
-    fails("extra.csv", "rail,x,y,z,extra\na,0,0,0,1\n", "has a column \"extra\"");
-    fails("twice.csv", "x,y,z,X\n0,0,0,1\n", "twice the column \"x\"");
+          "has a column 'piece'; a rail file's columns are x, y, z and optionally rail");
+    fails("extra.csv", "rail,x,y,z,extra\na,0,0,0,1\n", "has a column 'extra'");
+    fails("twice.csv", "x,y,z,X\n0,0,0,1\n", "twice the column 'x'");
     fails("partial.csv", "rail,x,y\na,0,0\n", "must name columns x, y and z");
     fails("empty.csv", "", "holds no points");
     fails("one.csv", "1,2,3\n", "2 distinct points");
