@@ -5,6 +5,7 @@
 // pointer in the registry; a stock lua5.4 that does require "netsculpt" gets a default one
 // (no sandbox, output folder = the current directory, no journal, no limits).
 
+#include "commands/Document.h"
 #include "physics/Relaxer.h"
 
 #include <lua.hpp>
@@ -36,7 +37,7 @@ struct ScriptContext {
     /// Called during every doc:relax (the CLI's progress line). Empty = none.
     std::function<void(const RelaxProgress&)> relaxProgress;
     /// Called when a doc:relax returns (the CLI clears its progress line). Empty = none.
-    std::function<void(const RelaxResult&)> relaxFinished;
+    std::function<void(const Document&, const RelaxResult&)> relaxFinished;
 
     // ---- limits (Limits.h) ----
     std::uint64_t maxInstructions = 0; ///< 0 = no budget

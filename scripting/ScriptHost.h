@@ -35,7 +35,7 @@ struct ScriptOptions {
     /// Called during every doc:relax. Empty = none.
     std::function<void(const RelaxProgress&)> relaxProgress;
     /// Called when a doc:relax returns. Empty = none.
-    std::function<void(const RelaxResult&)> relaxFinished;
+    std::function<void(const Document&, const RelaxResult&)> relaxFinished;
 };
 
 struct ScriptResult {

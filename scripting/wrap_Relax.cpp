@@ -1,5 +1,6 @@
 // Relaxation: doc:relax{...}, doc:last_relax(); ns.backends().
 
+#include "io/Report.h"
 #include "model/Error.h"
 #include "physics/Backends.h"
 #include "scripting/Context.h"
@@ -72,14 +73,17 @@ void pushRelaxResult(lua_State* L, const RelaxResult& r, int docIndex) {
 
 /// doc:relax{tolerance, max_seconds, max_steps, backend, wind = {direction, pressure},
 /// continuation, threads} -> {converged, residual, steps, evaluations, seconds, backend,
-/// stop_reason, unsettled_at = {piece, row, column} when not converged}.
+/// stop_reason, unsettled_at = {piece, row, column} when not converged, overstretched_bars: the
+/// bars stretched beyond what rope can (Report.h)}.
 int w_relax(Call& call) {
     Document& doc = checkDocument(call);
     const DocumentRelaxOptions options = relaxArgs(call);
     const RelaxResult result = doc.relax(options);
     if (const auto& finished = context(call.L).relaxFinished)
-        finished(result);
+        finished(doc, result);
     pushRelaxResult(call.L, result, 1);
+    setInteger(call.L, "overstretched_bars",
+               std::int64_t(countOverstretchedBars(doc.compiled().system)));
     return 1;
 }
 

@@ -149,6 +149,22 @@ json pieceReport(const Sculpture& s, const CompiledSculpture& c, const Piece& p,
 
 } // namespace
 
+std::size_t countOverstretchedBars(const MassSpringSystem& sys) {
+    std::size_t count = 0;
+    for (std::size_t b = 0; b < sys.barCount(); ++b) {
+        const double length = distance(sys.position[sys.barA[b]], sys.position[sys.barB[b]]);
+        count += length / sys.restLength[b] - 1 > kOverstretchStrain ? 1 : 0;
+    }
+    return count;
+}
+
+std::string overstretchWarning(std::size_t count) {
+    return std::to_string(count) + " bars are stretched by more than " +
+           std::to_string(int(kOverstretchStrain * 100)) +
+           " % of their length, which rope cannot do: the net is tied between rails farther "
+           "apart than it reaches (netsculpt report)";
+}
+
 nlohmann::json buildReport(const Sculpture& s, const CompiledSculpture& c,
                            const RelaxStatus& status) {
     const MassSpringSystem& sys = c.system;

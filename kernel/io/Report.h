@@ -50,6 +50,15 @@ namespace netsculpt {
 /// rope that does not exist.
 inline constexpr double kOverstretchStrain = 0.02;
 
+/// The bars of `system` stretched by more than kOverstretchStrain at its positions.
+std::size_t countOverstretchedBars(const MassSpringSystem& system);
+/// The warning the CLI prints for `count` such bars in a relaxed shape (one line, no newline).
+std::string overstretchWarning(std::size_t count);
+/// A shape this near its equilibrium (residual in knot weights) has its final strains, whether
+/// or not a relaxation converged to its tolerance (a "precision limit" stop, a looser run): the
+/// report checks the design on it.
+inline constexpr double kSettledResidual = 1e-3;
+
 /// How the shape being reported came about (what a Document knows).
 struct RelaxStatus {
     bool relaxed = false;    ///< a relaxation converged since the last change

@@ -242,4 +242,22 @@ doc:connect_to_rail{piece = p, rail = lower}
     // ... but no rope hangs so: each of its 2 x (2 x 11 - 1) bars is stretched far beyond 2 %.
     CHECK_THAT(relax.output,
                Contains("netsculpt: warning: 42 bars are stretched by more than 2 %"));
+
+    // The same design relaxed by its script: `run` warns too, and relax{} returns the count.
+    const fs::path relaxing = writeScript(
+        dir, "over-relaxed.lua",
+        R"(local ns = require "netsculpt"
+local doc = ns.new()
+local upper = doc:add_rail{points = {{0, 0, 5}, {4, 0, 5}}}
+local lower = doc:add_rail{points = {{0, 2, 3}, {4, 2, 3}}}
+local p = doc:attach_to_rail{rail = upper, columns = 11, rows = 3, bar = 0.25}
+doc:connect_to_rail{piece = p, rail = lower}
+print("overstretched", doc:relax{}.overstretched_bars)
+)");
+    const Ran ran = runCli("run " + quoted(relaxing) + " --out " + quoted(dir));
+    INFO(ran.output);
+    CHECK(ran.exitCode == 0);
+    CHECK_THAT(ran.output, Contains("overstretched\t42") &&
+                               Contains("netsculpt: warning: after doc:relax, 42 bars are "
+                                        "stretched by more than 2 %"));
 }

@@ -73,7 +73,14 @@ lua::ScriptOptions scriptOptions(const RunArgs& a, ProgressLine& progress) {
     o.args = a.args;
     if (progress.enabled())
         o.relaxProgress = [&progress](const RelaxProgress& p) { progress.update(p); };
-    o.relaxFinished = [&progress](const RelaxResult& r) { progress.finish(r); };
+    // A script's relaxed shape gets the warning `relax` gives.
+    o.relaxFinished = [&progress](const Document& doc, const RelaxResult& r) {
+        progress.finish(r);
+        if (r.converged || r.residual <= kSettledResidual)
+            if (const std::size_t overstretched = countOverstretchedBars(doc.compiled().system))
+                std::cerr << "netsculpt: warning: after doc:relax, "
+                          << overstretchWarning(overstretched) << "\n";
+    };
     return o;
 }
 
@@ -155,11 +162,8 @@ int relaxDocument(const RelaxArgs& a, Verbosity verbosity) {
         std::cerr << "netsculpt: wrote " << snapshot.string() << "\n";
     if (!result.converged)
         return kExitNotConverged;
-    const int overstretched = buildReport(doc)["overstretched_bars"].get<int>();
-    if (overstretched > 0)
-        std::cerr << "netsculpt: warning: " << overstretched << " bars are stretched by more than "
-                  << kOverstretchStrain * 100 << " % of their length, which rope cannot do: the "
-                  << "net is tied between rails farther apart than it reaches (netsculpt report)\n";
+    if (const std::size_t overstretched = countOverstretchedBars(doc.compiled().system))
+        std::cerr << "netsculpt: warning: " << overstretchWarning(overstretched) << "\n";
     return 0;
 }
 
