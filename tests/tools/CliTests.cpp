@@ -190,6 +190,24 @@ TEST_CASE("replay, to-lua, relax, export and report on a journal", "[cli]") {
     CHECK(fs::is_regular_file(dir / "x" / "view.svg"));
     CHECK(runCli("export " + quoted(snapshot) + " " + quoted(dir / "x" / "knots.docx")).exitCode ==
           1);
+    // A journal holds no shape: export relaxes it first, to the shape `relax` gives ...
+    const Ran exportedJournal = runCli("export " + quoted(journal) + " " + quoted(dir / "j.csv"));
+    CHECK(exportedJournal.exitCode == 0);
+    CHECK_THAT(exportedJournal.output, Contains("relaxed it for export: converged"));
+    REQUIRE(runCli("relax " + quoted(journal) + " -q --out " + quoted(dir / "r")).exitCode == 0);
+    REQUIRE(runCli("export " + quoted(dir / "r" / "small.nets") + " -q " + quoted(dir / "r.csv"))
+                .exitCode == 0);
+    const auto text = [](const fs::path& file) {
+        std::ifstream in(file);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    CHECK(text(dir / "j.csv") == text(dir / "r.csv"));
+    // ... or, asked not to, writes the start's shape with a warning.
+    const Ran startShape =
+        runCli("export " + quoted(journal) + " --no-relax " + quoted(dir / "start.csv"));
+    CHECK(startShape.exitCode == 0);
+    CHECK_THAT(startShape.output, Contains("warning: the shape is not relaxed"));
+    CHECK(text(dir / "start.csv") != text(dir / "r.csv"));
 
     const Ran markdown = runCli("report " + quoted(snapshot));
     CHECK(markdown.exitCode == 0);

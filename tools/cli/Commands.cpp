@@ -167,8 +167,38 @@ int relaxDocument(const RelaxArgs& a, Verbosity verbosity) {
     return 0;
 }
 
+namespace {
+
+/// Relaxes `doc` for `purpose` ("the report", "export") when its shape is not an equilibrium
+/// (a journal holds no shape), or warns when asked not to: kExitNotConverged when that
+/// relaxation stopped short, else 0.
+int relaxUnlessRelaxed(Document& doc, const fs::path& document, bool relaxFirst,
+                       const std::string& purpose, Verbosity verbosity) {
+    if (doc.isRelaxed() || doc.compiled().system.knotCount() == 0)
+        return 0;
+    if (!relaxFirst) {
+        std::cerr << "netsculpt: warning: the shape is not relaxed: it is not the hanging net's "
+                     "(without --no-relax it is relaxed first)\n";
+        return 0;
+    }
+    DocumentRelaxOptions options;
+    ProgressLine progress(verbosity);
+    if (progress.enabled())
+        options.solver.progress = [&progress](const RelaxProgress& p) { progress.update(p); };
+    const RelaxResult result = doc.relax(options);
+    progress.finish(result);
+    if (verbosity != Verbosity::Quiet || !result.converged)
+        std::cerr << "netsculpt: " << document.string() << " holds no relaxed shape; relaxed it for "
+                  << purpose << ": "
+                  << describeRelaxResult(result) << "\n";
+    return result.converged ? 0 : kExitNotConverged;
+}
+
+} // namespace
+
 int exportDocument(const ExportArgs& a, Verbosity verbosity) {
-    const Document doc = openDocument(a.document, verbosity);
+    Document doc = openDocument(a.document, verbosity);
+    const int exitCode = relaxUnlessRelaxed(doc, a.document, a.relaxFirst, "export", verbosity);
     ExportOptions options;
     options.colourBy = a.colourBy;
     options.tubeRadius = a.tubeRadius;
@@ -182,39 +212,13 @@ int exportDocument(const ExportArgs& a, Verbosity verbosity) {
         if (verbosity != Verbosity::Quiet)
             std::cerr << "netsculpt: wrote " << file.string() << "\n";
     }
-    return 0;
+    return exitCode;
 }
-
-namespace {
-
-/// Relaxes `doc` for the report when its shape is not an equilibrium (or warns, when asked not
-/// to): kExitNotConverged when that relaxation stopped short, else 0.
-int relaxForReport(Document& doc, const ReportArgs& a, Verbosity verbosity) {
-    if (doc.isRelaxed() || doc.compiled().system.knotCount() == 0)
-        return 0;
-    if (!a.relaxFirst) {
-        std::cerr << "netsculpt: warning: the shape is not relaxed: its tensions and rail loads "
-                     "are not those of the hanging net (report without --no-relax relaxes it)\n";
-        return 0;
-    }
-    DocumentRelaxOptions options;
-    ProgressLine progress(verbosity);
-    if (progress.enabled())
-        options.solver.progress = [&progress](const RelaxProgress& p) { progress.update(p); };
-    const RelaxResult result = doc.relax(options);
-    progress.finish(result);
-    if (verbosity != Verbosity::Quiet || !result.converged)
-        std::cerr << "netsculpt: " << a.document.string()
-                  << " holds no relaxed shape; relaxed it for the report: "
-                  << describeRelaxResult(result) << "\n";
-    return result.converged ? 0 : kExitNotConverged;
-}
-
-} // namespace
 
 int reportDocument(const ReportArgs& a, Verbosity verbosity) {
     Document doc = openDocument(a.document, verbosity);
-    const int exitCode = relaxForReport(doc, a, verbosity);
+    const int exitCode =
+        relaxUnlessRelaxed(doc, a.document, a.relaxFirst, "the report", verbosity);
     const nlohmann::json report = buildReport(doc);
     switch (a.format) {
     case ReportFormat::Markdown:

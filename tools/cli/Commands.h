@@ -50,7 +50,10 @@ struct ExportArgs {
     int width = 1600;
     int height = 1200;
     std::string view = "all";
+    /// Relax a shape that is not an equilibrium first (as report does); false: as it is.
+    bool relaxFirst = true;
 };
+/// Writes the files: 0, or kExitNotConverged when the relaxation it ran stopped short.
 int exportDocument(const ExportArgs& a, Verbosity verbosity);
 
 enum class ReportFormat { Markdown, Json, PiecesCsv, AttachmentsCsv };

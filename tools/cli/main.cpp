@@ -107,6 +107,9 @@ void addExport(CLI::App& app, Options& o) {
         app.add_subcommand("export", "Export a sculpture's shape (format by extension)");
     exporting->add_option("document", o.exporting.document, "A journal (.netj) or snapshot (.nets)")
         ->required();
+    exporting->add_flag("!--no-relax", o.exporting.relaxFirst,
+                        "Export the shape as it is; without it a shape that is not relaxed (a "
+                        "journal's) is relaxed first");
     exporting
         ->add_option("files", o.exporting.files,
                      "Files to write: .csv .obj .ply .glb .json .svg .png")
