@@ -69,6 +69,16 @@ TEST_CASE("Help, version and usage errors", "[cli]") {
         CHECK(r.exitCode == 2);
         CHECK_THAT(r.output, StartsWith("netsculpt: error: "));
     }
+    // A misspelt command or option is named, in the order given, with the nearest option.
+    CHECK_THAT(runCli("reprot x.nets").output,
+               Contains("unknown command 'reprot'; the commands are run, replay, to-lua, relax, "
+                        "export, report"));
+    CHECK_THAT(runCli("relax d.netj --tolerence 1e-7").output,
+               Contains("unexpected arguments: --tolerence 1e-7 (--tolerence: did you mean "
+                        "--tolerance?)"));
+    CHECK_THAT(runCli("report d.netj --jsn").output, Contains("did you mean --json?"));
+    CHECK_THAT(runCli("relax d.netj --frobnicate").output,
+               Contains("unexpected arguments: --frobnicate\n"));
 }
 
 TEST_CASE("Numbers out of range are usage errors that say what is allowed", "[cli]") {
