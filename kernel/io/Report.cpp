@@ -173,6 +173,11 @@ nlohmann::json buildReport(const Sculpture& s, const CompiledSculpture& c,
     const std::vector<Vec3> reaction = physical ? reactions(sys, status.wind) : std::vector<Vec3>{};
     const double weight = physical ? totalWeight(sys) : 0.0;
     json report;
+    report["units"] = {{"length", "m"},
+                       {"mass", "kg"},
+                       {"force", "N"},
+                       {"axes", "the sculpture's, z up"},
+                       {"reaction", "the force a rail exerts on the net; its load is the opposite"}};
     report["relaxed"] = status.relaxed;
     report["residual"] = physical ? residual(sys, status.wind) : 0.0;
     const Vec3 windForce = physical && status.wind ? totalWindForce(sys, *status.wind) : Vec3{};

@@ -2,7 +2,7 @@
 // The fabrication and load report: the numbers a net maker and an engineer need (DESIGN.md
 // "Lua API": report()). Computed from the document's current shape.
 //
-// Keys (lengths m, masses kg, forces N, vectors {x, y, z}):
+// Keys (lengths m, masses kg, forces N, vectors {x, y, z}; `units` says so in the file):
 //   relaxed (a relaxation converged since the last change), residual (max |F_j| / (m_j |g|) over
 //   free knots now), relax {converged, residual, steps, seconds, backend, stop_reason} of the last
 //   relaxation run on the document since it was opened (null when none was: a shape read from a

@@ -55,6 +55,8 @@ TEST_CASE("report of a single open sheet: counts, rope length and mass by hand")
     CHECK(r["total_mass"].get<double>() == Approx(mass).epsilon(1e-14));
     CHECK(r["total_weight"].get<double>() == Approx(mass * 9.81).epsilon(1e-14));
     CHECK(r["relaxed"] == false);
+    CHECK(r["units"]["force"] == "N");
+    CHECK(r["units"]["length"] == "m");
     CHECK(r["force_balance"]["relaxed"] == false);
     CHECK_THAT(r["force_balance"]["note"].get<std::string>(), Contains("not relaxed"));
 
