@@ -311,7 +311,7 @@ class NewtonRun {
     std::vector<double>& dampingUnit_; ///< per free knot: m_j |g| / (mean rest length), N/m
     double meanDiagonal_ = 1;
     bool windy_ = false;
-    std::vector<Vec3> windMove_, windLoad_, windStep_; ///< per knot (WindSteps.cpp)
+    std::vector<Vec3> windMove_, windLoad_; ///< per knot (WindSteps.cpp)
     std::int64_t steps_ = 0, evaluations_ = 0;
     double lastProgress_ = -std::numeric_limits<double>::infinity();
     std::string stopReason_;

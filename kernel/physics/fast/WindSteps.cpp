@@ -11,6 +11,7 @@
 #include <Eigen/Dense>
 
 #include <cmath>
+#include <functional>
 
 namespace netsculpt::newton {
 
@@ -21,6 +22,53 @@ double dot(const std::vector<double>& a, const std::vector<double>& b) {
     for (std::size_t i = 0; i < a.size(); ++i)
         sum += a[i] * b[i];
     return sum;
+}
+
+using Operator = std::function<void(const std::vector<double>&, std::vector<double>&)>;
+
+/// GMRES for A x = b from x (A applied by `apply`): at most `vectors` Krylov vectors, until the
+/// residual's norm is at most `goal`. Returns false, x unchanged, when the numbers broke down.
+bool solveByGmres(const Operator& apply, const std::vector<double>& b, std::vector<double>& x,
+                  int vectors, double goal) {
+    const std::size_t n = b.size();
+    std::vector<double> image;
+    apply(x, image);
+    std::vector<std::vector<double>> basis(1, std::vector<double>(n));
+    for (std::size_t i = 0; i < n; ++i)
+        basis[0][i] = b[i] - image[i];
+    const double beta = std::sqrt(dot(basis[0], basis[0]));
+    if (!(beta > goal))
+        return std::isfinite(beta);
+    for (double& value : basis[0])
+        value /= beta;
+    Eigen::MatrixXd hessenberg = Eigen::MatrixXd::Zero(vectors + 1, vectors);
+    Eigen::VectorXd coefficients;
+    for (int k = 0; k < vectors; ++k) {
+        std::vector<double> w;
+        apply(basis[k], w);
+        for (int i = 0; i <= k; ++i) { // modified Gram-Schmidt
+            hessenberg(i, k) = dot(basis[i], w);
+            for (std::size_t e = 0; e < n; ++e)
+                w[e] -= hessenberg(i, k) * basis[i][e];
+        }
+        hessenberg(k + 1, k) = std::sqrt(dot(w, w));
+        // The combination of the basis that leaves the least residual: a small least squares.
+        Eigen::VectorXd target = Eigen::VectorXd::Zero(k + 2);
+        target(0) = beta;
+        const Eigen::MatrixXd h = hessenberg.topLeftCorner(k + 2, k + 1);
+        coefficients = h.colPivHouseholderQr().solve(target);
+        if (!((h * coefficients - target).norm() > goal) || !(hessenberg(k + 1, k) > 0))
+            break;
+        for (double& value : w)
+            value /= hessenberg(k + 1, k);
+        basis.push_back(std::move(w));
+    }
+    if (!coefficients.allFinite())
+        return false;
+    for (Eigen::Index i = 0; i < coefficients.size(); ++i)
+        for (std::size_t e = 0; e < n; ++e)
+            x[e] += coefficients(i) * basis[std::size_t(i)][e];
+    return true;
 }
 
 } // namespace
@@ -44,67 +92,32 @@ void NewtonRun::applyWindOperator(const std::vector<double>& v, std::vector<doub
 }
 
 void NewtonRun::correctStepForWind() {
-    const std::size_t freeCount = analysis_.freeKnots.size(), n = 3 * freeCount;
+    const std::size_t freeCount = analysis_.freeKnots.size();
     windMove_.assign(system_.knotCount(), Vec3{});
     windLoad_.resize(system_.knotCount());
-    windStep_.resize(system_.knotCount());
-    std::vector<double> start(n);
+    // (I - M^-1 G) d = M^-1 F, from d = M^-1 F (the frozen wind's step, step_).
+    std::vector<double> frozen(3 * freeCount);
     for (std::size_t f = 0; f < freeCount; ++f) {
         const Vec3& s = step_[analysis_.freeKnots[f]];
-        start[3 * f] = s.x;
-        start[3 * f + 1] = s.y;
-        start[3 * f + 2] = s.z;
+        frozen[3 * f] = s.x;
+        frozen[3 * f + 1] = s.y;
+        frozen[3 * f + 2] = s.z;
     }
-    // From d = M^-1 F (the frozen wind's step): the residual M^-1 F - (I - M^-1 G) d = M^-1 G d.
-    std::vector<double> image;
-    applyWindOperator(start, image);
-    std::vector<std::vector<double>> basis(1, std::vector<double>(n));
-    for (std::size_t i = 0; i < n; ++i)
-        basis[0][i] = start[i] - image[i];
-    const double beta = std::sqrt(dot(basis[0], basis[0]));
-    const double goal = kWindKrylovTolerance * std::sqrt(dot(start, start));
-    if (!(beta > goal))
+    std::vector<double> d = frozen;
+    const Operator apply = [this](const std::vector<double>& v, std::vector<double>& out) {
+        applyWindOperator(v, out);
+    };
+    const double goal = kWindKrylovTolerance * std::sqrt(dot(frozen, frozen));
+    if (!solveByGmres(apply, frozen, d, kWindKrylovVectors, goal))
         return;
-    for (double& value : basis[0])
-        value /= beta;
-    Eigen::MatrixXd hessenberg = Eigen::MatrixXd::Zero(kWindKrylovVectors + 1, kWindKrylovVectors);
-    Eigen::VectorXd coefficients;
-    for (int k = 0; k < kWindKrylovVectors; ++k) {
-        std::vector<double> w;
-        applyWindOperator(basis[k], w);
-        for (int i = 0; i <= k; ++i) { // modified Gram-Schmidt
-            hessenberg(i, k) = dot(basis[i], w);
-            for (std::size_t e = 0; e < n; ++e)
-                w[e] -= hessenberg(i, k) * basis[i][e];
-        }
-        hessenberg(k + 1, k) = std::sqrt(dot(w, w));
-        Eigen::VectorXd target = Eigen::VectorXd::Zero(k + 2);
-        target(0) = beta;
-        const Eigen::MatrixXd h = hessenberg.topLeftCorner(k + 2, k + 1);
-        coefficients = h.colPivHouseholderQr().solve(target);
-        const double left = (h * coefficients - target).norm();
-        if (!(left > goal) || !(hessenberg(k + 1, k) > 0))
-            break;
-        for (double& value : w)
-            value /= hessenberg(k + 1, k);
-        basis.push_back(std::move(w));
-    }
-    if (!coefficients.allFinite())
-        return;
-    double slope = 0;
-    for (std::size_t f = 0; f < freeCount; ++f) {
-        const std::uint32_t j = analysis_.freeKnots[f];
-        Vec3 d{start[3 * f], start[3 * f + 1], start[3 * f + 2]};
-        for (Eigen::Index i = 0; i < coefficients.size(); ++i)
-            d += Vec3{basis[i][3 * f], basis[i][3 * f + 1], basis[i][3 * f + 2]} * coefficients(i);
-        windStep_[j] = d;
-        slope += force_[j].dot(d);
-    }
     // The energy with the wind frozen must fall along it (the line search's measure); else the
     // frozen wind's step stays.
+    double slope = 0;
+    for (std::size_t f = 0; f < freeCount; ++f)
+        slope += force_[analysis_.freeKnots[f]].dot(Vec3{d[3 * f], d[3 * f + 1], d[3 * f + 2]});
     if (slope > 0)
-        for (std::uint32_t j : analysis_.freeKnots)
-            step_[j] = windStep_[j];
+        for (std::size_t f = 0; f < freeCount; ++f)
+            step_[analysis_.freeKnots[f]] = Vec3{d[3 * f], d[3 * f + 1], d[3 * f + 2]};
 }
 
 } // namespace netsculpt::newton
