@@ -6,9 +6,8 @@
 // by GMRES on (I - M^-1 G) d = M^-1 F with the factor of M: one solve and one pass over the
 // bars per Krylov vector.
 
+#include "physics/EigenDense.h" // first: before anything that includes <immintrin.h>
 #include "physics/fast/NewtonRun.h"
-
-#include <Eigen/Dense>
 
 #include <cmath>
 #include <functional>
