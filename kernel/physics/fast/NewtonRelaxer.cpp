@@ -298,7 +298,10 @@ double NewtonRun::searchLine(bool mixed, double slope, double best, bool& accept
             }
             alpha = next;
         }
-        if (accepted && alpha == 1.0 && bent_ && fullChange < -kExpandDecrease * slope)
+        // Not with wind: the frozen wind's energy is another function at every step, and steps
+        // lengthened by it circled around the equilibrium (a split ring of long bars in 0.2 N/m).
+        if (accepted && alpha == 1.0 && bent_ && !windy_ &&
+            fullChange < -kExpandDecrease * slope)
             alpha = expandStep(slope, fullChange);
         field_.thawWind();
     }
