@@ -111,7 +111,8 @@ int w_backends(Call& call) {
 } // namespace
 
 void addRelaxMethods(lua_State* L) {
-    setMethods(L, {{"relax", entry<w_relax>, kKeywordTable}, {"last_relax", entry<w_last_relax>, 0}});
+    setMethods(L, {{"relax", entry<w_relax>, kKeywordTable},
+                   {"last_relax", entry<w_last_relax>, 0}});
 }
 
 void addModuleRelaxFunctions(lua_State* L) {

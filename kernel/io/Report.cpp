@@ -177,7 +177,8 @@ nlohmann::json buildReport(const Sculpture& s, const CompiledSculpture& c,
                        {"mass", "kg"},
                        {"force", "N"},
                        {"axes", "the sculpture's, z up"},
-                       {"reaction", "the force a rail exerts on the net; its load is the opposite"}};
+                       {"reaction",
+                        "the force a rail exerts on the net; its load is the opposite"}};
     report["relaxed"] = status.relaxed;
     report["residual"] = physical ? residual(sys, status.wind) : 0.0;
     const Vec3 windForce = physical && status.wind ? totalWindForce(sys, *status.wind) : Vec3{};

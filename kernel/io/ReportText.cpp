@@ -207,7 +207,8 @@ std::string reportMarkdown(const json& r) {
     if (!r["max_strain_at"].is_null())
         md += " (" + barText(r["max_strain_at"]) + ")";
     md += " |\n| slack bars | " + num(r["slack_bars"]) + " |\n\n";
-    const bool settled = r["relaxed"].get<bool>() || r["residual"].get<double>() <= kSettledResidual;
+    const bool settled =
+        r["relaxed"].get<bool>() || r["residual"].get<double>() <= kSettledResidual;
     if (settled && r["overstretched_bars"].get<std::size_t>() > 0)
         md += "**Check the design:** " + num(r["overstretched_bars"]) +
               " bars are stretched by more than " +

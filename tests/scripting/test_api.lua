@@ -145,7 +145,8 @@ T.case("a handle to an undone piece stays dead when another piece gets its id", 
   local beam = doc:add_rail{points = {{0, 0, 3}, {3, 0, 3}}}
   local tube = doc:attach_to_rail{rail = ring, columns = 12, rows = 6, bar = 0.3}
   doc:undo()
-  T.raises(function() tube:info() end, "info: piece 1 no longer exists (the call that made it was undone")
+  T.raises(function() tube:info() end,
+           "info: piece 1 no longer exists (the call that made it was undone")
   local sheet = doc:attach_to_rail{rail = beam, columns = 11, rows = 4, bar = 0.3}
   T.eq(sheet.id, tube.id) -- the id is given again ...
   T.check(sheet ~= tube, "... to another piece")

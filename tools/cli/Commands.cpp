@@ -188,8 +188,8 @@ int relaxUnlessRelaxed(Document& doc, const fs::path& document, bool relaxFirst,
     const RelaxResult result = doc.relax(options);
     progress.finish(result);
     if (verbosity != Verbosity::Quiet || !result.converged)
-        std::cerr << "netsculpt: " << document.string() << " holds no relaxed shape; relaxed it for "
-                  << purpose << ": "
+        std::cerr << "netsculpt: " << document.string()
+                  << " holds no relaxed shape; relaxed it for " << purpose << ": "
                   << describeRelaxResult(result) << "\n";
     return result.converged ? 0 : kExitNotConverged;
 }
