@@ -87,13 +87,18 @@ int w_relax(Call& call) {
     return 1;
 }
 
-/// doc:last_relax() -> the last relax result, or nil before any.
+/// doc:last_relax() -> the last relax result (as relax{} returns it, with the shape's
+/// overstretched_bars now), or nil before any.
 int w_last_relax(Call& call) {
-    const RelaxResult& r = checkDocument(call).lastRelax();
-    if (r.stopReason.empty() && r.steps == 0 && !r.converged)
+    const Document& doc = checkDocument(call);
+    const RelaxResult& r = doc.lastRelax();
+    if (r.stopReason.empty() && r.steps == 0 && !r.converged) {
         lua_pushnil(call.L);
-    else
-        pushRelaxResult(call.L, r, 1);
+        return 1;
+    }
+    pushRelaxResult(call.L, r, 1);
+    setInteger(call.L, "overstretched_bars",
+               std::int64_t(countOverstretchedBars(doc.compiled().system)));
     return 1;
 }
 

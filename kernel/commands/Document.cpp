@@ -165,6 +165,8 @@ struct Document::State {
         makeRoom(log, log.size() + 1);
         makeRoom(steps, index + 1);
         makeRoom(memos, index + 2);
+        pieceBirth.reserve(pieceBirth.size() + bornPieces.size());
+        railBirth.reserve(railBirth.size() + bornRails.size());
 
         if (journal) journal->append(encoded); // the last step that may fail: nothing is changed yet
 

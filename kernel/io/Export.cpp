@@ -142,9 +142,7 @@ std::vector<std::string> exportFormats() {
     return {"csv", "obj", "ply", "glb", "json", "svg", "png"};
 }
 
-void exportFile(const Sculpture& sculpture, const CompiledSculpture& compiled,
-                const RelaxStatus& status, const std::filesystem::path& path,
-                const ExportOptions& options) {
+void checkExport(const std::filesystem::path& path, const ExportOptions& options) {
     const std::string ext = io::lowerExtension(path);
     const auto formats = exportFormats();
     if (std::find(formats.begin(), formats.end(), ext) == formats.end())
@@ -152,6 +150,13 @@ void exportFile(const Sculpture& sculpture, const CompiledSculpture& compiled,
                         (ext.empty() ? "a file without extension" : "." + ext) +
                         "; the formats are " + joined(formats));
     validate(options);
+}
+
+void exportFile(const Sculpture& sculpture, const CompiledSculpture& compiled,
+                const RelaxStatus& status, const std::filesystem::path& path,
+                const ExportOptions& options) {
+    checkExport(path, options);
+    const std::string ext = io::lowerExtension(path);
     const io::ExportInput in{sculpture, compiled, status, options};
     std::string bytes;
     if (ext == "csv")

@@ -29,6 +29,9 @@ struct ExportOptions {
 
 /// The extensions exportFile understands: "csv", "obj", "ply", "glb", "json", "svg", "png".
 std::vector<std::string> exportFormats();
+/// Throws the UserError exportFile throws for `path`'s extension and for bad options, before any
+/// work is done (the CLI checks its files before it relaxes).
+void checkExport(const std::filesystem::path& path, const ExportOptions& options);
 
 /// Writes the document's current (relaxed, if relaxed) shape to `path`, format by extension.
 /// Writes to a temporary file beside it and renames, so a failure leaves no half-written file.

@@ -177,8 +177,10 @@ std::pair<PieceId, PieceId> split(Sculpture& s, PieceId id, int column) {
     b.colour = paletteColour(b.id);
     b.columns = wasClosed ? c - column + 1 : c - column;
     b.closed = false;
-    b.bar.from -= column;
-    b.bar.to -= column;
+    if (b.bar.axis == BarAxis::Column) { // a profile by row is the same in both parts
+        b.bar.from -= column;
+        b.bar.to -= column;
+    }
     if (b.onRail()) std::get<RailEdge>(b.top).offset += column;
     else {
         std::get<ParentEdge>(b.top).offset += column;

@@ -250,6 +250,27 @@ TEST_CASE("a split changes no knot, bar or rest length") {
     CHECK(t.s.piece(c2).bar.at(0) == t.s.piece(a).bar.at(2));
 }
 
+TEST_CASE("a split of a piece graded by row changes no rest length either") {
+    // Its profile runs over rows: both parts keep it (the right part once got it shifted by the
+    // split's column, 0.5-0.8 becoming 0.9-1.2).
+    Sculpture s;
+    RailId line = edit(s, [](Sculpture& m) { return addRail(m, "line", lineRail({0, 0, 0}, {4.5, 0, 0})); });
+    PieceId p = edit(s, [&](Sculpture& m) { return attachToRail(m, {line, 10, 0, 4, 0.5, 0, false}); });
+    edit(s, [&](Sculpture& m) {
+        setBarLengthByRow(m, p, 0, 0.5);
+        setBarLengthByRow(m, p, 3, 0.8);
+        return 0;
+    });
+    const auto before = compileSculpture(s);
+    auto [a, b] = edit(s, [&](Sculpture& m) { return split(m, p, 4); });
+    const auto after = compileSculpture(s);
+    CHECK(fingerprint(after.system) == fingerprint(before.system));
+    for (const PieceId part : {a, b}) {
+        CHECK(s.piece(part).bar.at(0) == 0.5);
+        CHECK(s.piece(part).bar.at(3) == 0.8);
+    }
+}
+
 TEST_CASE("bar length at a seam is shared and interpolated across each piece") {
     Sculpture s;
     RailId line = edit(s, [](Sculpture& m) { return addRail(m, "line", lineRail({0, 0, 0}, {4.5, 0, 0})); });

@@ -204,6 +204,9 @@ TEST_CASE("replay, to-lua, relax, export and report on a journal", "[cli]") {
     const Ran exportedJournal = runCli("export " + quoted(journal) + " " + quoted(dir / "j.csv"));
     CHECK(exportedJournal.exitCode == 0);
     CHECK_THAT(exportedJournal.output, Contains("relaxed it for export: converged"));
+    const Ran badName = runCli("export " + quoted(journal) + " " + quoted(dir / "k.docx"));
+    CHECK(badName.exitCode == 1); // refused before relaxing, which can take a while
+    CHECK_THAT(badName.output, Contains("cannot export to .docx") && !Contains("relaxed it"));
     REQUIRE(runCli("relax " + quoted(journal) + " -q --out " + quoted(dir / "r")).exitCode == 0);
     REQUIRE(runCli("export " + quoted(dir / "r" / "small.nets") + " -q " + quoted(dir / "r.csv"))
                 .exitCode == 0);

@@ -197,14 +197,16 @@ int relaxUnlessRelaxed(Document& doc, const fs::path& document, bool relaxFirst,
 } // namespace
 
 int exportDocument(const ExportArgs& a, Verbosity verbosity) {
-    Document doc = openDocument(a.document, verbosity);
-    const int exitCode = relaxUnlessRelaxed(doc, a.document, a.relaxFirst, "export", verbosity);
     ExportOptions options;
     options.colourBy = a.colourBy;
     options.tubeRadius = a.tubeRadius;
     options.width = a.width;
     options.height = a.height;
     options.view = a.view;
+    for (const fs::path& file : a.files)
+        checkExport(file, options); // before a relaxation that may take a while
+    Document doc = openDocument(a.document, verbosity);
+    const int exitCode = relaxUnlessRelaxed(doc, a.document, a.relaxFirst, "export", verbosity);
     for (const fs::path& file : a.files) {
         if (file.has_parent_path())
             createFolder(file.parent_path());
