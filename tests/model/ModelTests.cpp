@@ -254,8 +254,12 @@ TEST_CASE("a split of a piece graded by row changes no rest length either") {
     // Its profile runs over rows: both parts keep it (the right part once got it shifted by the
     // split's column, 0.5-0.8 becoming 0.9-1.2).
     Sculpture s;
-    RailId line = edit(s, [](Sculpture& m) { return addRail(m, "line", lineRail({0, 0, 0}, {4.5, 0, 0})); });
-    PieceId p = edit(s, [&](Sculpture& m) { return attachToRail(m, {line, 10, 0, 4, 0.5, 0, false}); });
+    const RailId line = edit(s, [](Sculpture& m) {
+        return addRail(m, "line", lineRail({0, 0, 0}, {4.5, 0, 0}));
+    });
+    const PieceId p = edit(s, [&](Sculpture& m) {
+        return attachToRail(m, {line, 10, 0, 4, 0.5, 0, false});
+    });
     edit(s, [&](Sculpture& m) {
         setBarLengthByRow(m, p, 0, 0.5);
         setBarLengthByRow(m, p, 3, 0.8);
