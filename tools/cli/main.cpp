@@ -2,12 +2,12 @@
 // ("netsculpt: error: ..."), 2 usage error.
 
 #include "Commands.h"
+#include "ParseErrors.h"
 #include "commands/HeapSettings.h"
 
 #include "model/Error.h"
 #include "physics/Backends.h"
 
-#include <algorithm>
 #include <CLI/CLI.hpp>
 
 #include <iostream>
@@ -174,65 +174,6 @@ int dispatch(const CLI::App& app, const Options& o) {
     return reportDocument(args, verbosity);
 }
 
-/// Levenshtein distance between a and b (for "did you mean").
-std::size_t editDistance(const std::string& a, const std::string& b) {
-    std::vector<std::size_t> row(b.size() + 1);
-    for (std::size_t j = 0; j <= b.size(); ++j)
-        row[j] = j;
-    for (std::size_t i = 1; i <= a.size(); ++i) {
-        std::size_t diagonal = row[0];
-        row[0] = i;
-        for (std::size_t j = 1; j <= b.size(); ++j) {
-            const std::size_t above = row[j];
-            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
-            diagonal = above;
-        }
-    }
-    return row[b.size()];
-}
-
-/// The long option of `command` nearest `given` ("--tolerence": "--tolerance"), "" when none is
-/// within three edits.
-std::string nearestOption(const CLI::App& command, const std::string& given) {
-    std::string best;
-    std::size_t bestDistance = 4;
-    for (const CLI::Option* option : command.get_options())
-        for (const std::string& name : option->get_lnames()) {
-            const std::size_t d = editDistance(given, "--" + name);
-            if (d < bestDistance) {
-                bestDistance = d;
-                best = "--" + name;
-            }
-        }
-    return best;
-}
-
-/// A parse error in the user's terms: an unknown command named as such, unexpected arguments in
-/// the order given, with the option nearest a misspelt one.
-std::string describeParseError(const CLI::App& app, const CLI::ParseError& e) {
-    const auto commands = app.get_subcommands();
-    std::vector<std::string> extra = app.remaining();
-    if (extra.empty() && !commands.empty())
-        extra = commands.front()->remaining();
-    if (commands.empty() && !extra.empty() && !extra.front().starts_with("-")) {
-        std::string names;
-        for (const CLI::App* command : app.get_subcommands({}))
-            names += (names.empty() ? "" : ", ") + command->get_name();
-        return "unknown command '" + extra.front() + "'; the commands are " + names;
-    }
-    if (dynamic_cast<const CLI::ExtrasError*>(&e) == nullptr || extra.empty())
-        return e.what();
-    std::string text = "unexpected arguments:";
-    for (const std::string& argument : extra)
-        text += " " + argument;
-    const CLI::App& command = commands.empty() ? app : *commands.front();
-    for (const std::string& argument : extra)
-        if (argument.starts_with("--"))
-            if (const std::string near = nearestOption(command, argument); !near.empty())
-                return text + " (" + argument + ": did you mean " + near + "?)";
-    return text;
-}
-
 } // namespace
 
 int main(int argc, char** argv) {
@@ -258,7 +199,7 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        std::cerr << "netsculpt: error: " << describeParseError(app, e)
+        std::cerr << "netsculpt: error: " << netsculpt::cli::describeParseError(app, e)
                   << "\nRun with --help for more information.\n";
         return 2;
     }

@@ -1,0 +1,16 @@
+#pragma once
+// The CLI's usage errors in the user's terms (CLI11's own name an unknown command "A subcommand
+// is required" and list unexpected arguments backwards).
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+namespace netsculpt::cli {
+
+/// The message for a parse error of `app`: an unknown command named, with the commands there are;
+/// unexpected arguments in the order given, with the option nearest a misspelt one ("--tolerence:
+/// did you mean --tolerance?"); else CLI11's message.
+std::string describeParseError(const CLI::App& app, const CLI::ParseError& e);
+
+} // namespace netsculpt::cli
