@@ -51,8 +51,9 @@ DocumentRelaxOptions relaxArgs(const Call& call) {
     return options;
 }
 
-/// The result table; docIndex: the document's stack index (unsettled_at.piece is its handle).
-void pushRelaxResult(lua_State* L, const RelaxResult& r, int docIndex) {
+/// The result table of `doc` (at stack index docIndex: unsettled_at.piece is its handle), with
+/// the bars its shape stretches beyond what rope can (overstretched_bars).
+void pushRelaxResult(lua_State* L, const Document& doc, const RelaxResult& r, int docIndex) {
     lua_createtable(L, 0, 8);
     setBoolean(L, "converged", r.converged);
     setNumber(L, "residual", r.residual);
@@ -69,6 +70,8 @@ void pushRelaxResult(lua_State* L, const RelaxResult& r, int docIndex) {
         setInteger(L, "column", r.unsettledAt->column);
         lua_setfield(L, -2, "unsettled_at");
     }
+    setInteger(L, "overstretched_bars",
+               std::int64_t(countOverstretchedBars(doc.compiled().system)));
 }
 
 /// doc:relax{tolerance, max_seconds, max_steps, backend, wind = {direction, pressure},
@@ -81,9 +84,7 @@ int w_relax(Call& call) {
     const RelaxResult result = doc.relax(options);
     if (const auto& finished = context(call.L).relaxFinished)
         finished(doc, result);
-    pushRelaxResult(call.L, result, 1);
-    setInteger(call.L, "overstretched_bars",
-               std::int64_t(countOverstretchedBars(doc.compiled().system)));
+    pushRelaxResult(call.L, doc, result, 1);
     return 1;
 }
 
@@ -96,9 +97,7 @@ int w_last_relax(Call& call) {
         lua_pushnil(call.L);
         return 1;
     }
-    pushRelaxResult(call.L, r, 1);
-    setInteger(call.L, "overstretched_bars",
-               std::int64_t(countOverstretchedBars(doc.compiled().system)));
+    pushRelaxResult(call.L, doc, r, 1);
     return 1;
 }
 

@@ -59,6 +59,11 @@ json pieceTop(const Sculpture& s, const Piece& p) {
             {"offset", e.offset}};
 }
 
+/// (l - l_eq) / l_eq of bar b at the system's positions.
+double barStrain(const MassSpringSystem& sys, std::size_t b) {
+    return distance(sys.position[sys.barA[b]], sys.position[sys.barB[b]]) / sys.restLength[b] - 1;
+}
+
 /// Whether knot k is in `column` of `piece`.
 bool inColumn(const MassSpringSystem& sys, std::uint32_t k, PieceId piece, int column) {
     for (std::uint32_t i = sys.refStart[k]; i < sys.refStart[k + 1]; ++i)
@@ -151,10 +156,8 @@ json pieceReport(const Sculpture& s, const CompiledSculpture& c, const Piece& p,
 
 std::size_t countOverstretchedBars(const MassSpringSystem& sys) {
     std::size_t count = 0;
-    for (std::size_t b = 0; b < sys.barCount(); ++b) {
-        const double length = distance(sys.position[sys.barA[b]], sys.position[sys.barB[b]]);
-        count += length / sys.restLength[b] - 1 > kOverstretchStrain ? 1 : 0;
-    }
+    for (std::size_t b = 0; b < sys.barCount(); ++b)
+        count += barStrain(sys, b) > kOverstretchStrain ? 1 : 0;
     return count;
 }
 
@@ -213,7 +216,7 @@ nlohmann::json buildReport(const Sculpture& s, const CompiledSculpture& c,
             ++slack;
         if (tension[b] > tension[strongest])
             strongest = b;
-        const double strain = length / sys.restLength[b] - 1;
+        const double strain = barStrain(sys, b);
         overstretched += strain > kOverstretchStrain ? 1 : 0;
         if (strain > maxStrain) {
             maxStrain = strain;

@@ -104,19 +104,23 @@ std::string seamsText(const json& seams) {
     return text.empty() ? "-" : text;
 }
 
+/// A piece's bar lengths as knotted: between its rows when its length varies by row, else per
+/// column.
+const json& knottedLengths(const json& p) {
+    const json& byRow = p["bar_lengths_between_rows"];
+    return byRow.empty() ? p["bar_lengths"] : byRow;
+}
+
 /// The bar lengths as knotted, first to last: "0.25 at column 0 to 0.2 at column 12", or
 /// between rows for a piece whose length varies by row.
 std::string barLengthText(const json& p) {
-    const json& byRow = p["bar_lengths_between_rows"];
-    const json& lengths = byRow.empty() ? p["bar_lengths"] : byRow;
+    const json& lengths = knottedLengths(p);
     const double first = lengths.front().get<double>(), last = lengths.back().get<double>();
     if (first == last)
         return g6(first);
-    if (!byRow.empty()) {
-        const std::string end = std::to_string(lengths.size());
+    if (!p["bar_lengths_between_rows"].empty())
         return g6(first) + " between rows 0 and 1 to " + g6(last) + " between rows " +
-               std::to_string(lengths.size() - 1) + " and " + end;
-    }
+               std::to_string(lengths.size() - 1) + " and " + std::to_string(lengths.size());
     return g6(first) + " at column 0 to " + g6(last) + " at column " +
            std::to_string(lengths.size() - 1);
 }
@@ -124,8 +128,7 @@ std::string barLengthText(const json& p) {
 /// "first,last": the knotted bar lengths at the first and last column (or between the first
 /// and the last two rows), round-trip precision.
 std::string knottedEnds(const json& p) {
-    const json& byRow = p["bar_lengths_between_rows"];
-    const json& lengths = byRow.empty() ? p["bar_lengths"] : byRow;
+    const json& lengths = knottedLengths(p);
     return num(lengths.front()) + "," + num(lengths.back());
 }
 

@@ -245,10 +245,15 @@ void ForceField::computeBars(const Vec3* positions, std::size_t begin, std::size
             tension[b] = f.tension;
     }
     if (hasWind_ && !windFrozen_)
-        for (b = begin; b < end; ++b) {
-            const Vec3 d = at(positions, ends[2 * b + 1]) - at(positions, ends[2 * b]);
-            barWind_[b] = windOnBar(windDirection_, windPressure_, d) * 0.5; // half to each end
-        }
+        computeWind(positions, begin, end);
+}
+
+void ForceField::computeWind(const Vec3* positions, std::size_t begin, std::size_t end) {
+    const std::uint32_t* const ends = endOffsets_.data();
+    for (std::size_t b = begin; b < end; ++b) {
+        const Vec3 d = at(positions, ends[2 * b + 1]) - at(positions, ends[2 * b]);
+        barWind_[b] = windOnBar(windDirection_, windPressure_, d) * 0.5; // half to each end
+    }
 }
 
 void ForceField::windChange(std::span<const Vec3> positions, std::span<const Vec3> move,
@@ -278,12 +283,7 @@ void ForceField::freezeWind(std::span<const Vec3> positions) {
     assert(positions.size() == knotCount());
     if (!hasWind_)
         return;
-    windFrozen_ = false;
-    const std::uint32_t* const ends = endOffsets_.data();
-    for (std::size_t b = 0; b < barCount(); ++b) {
-        const Vec3 d = at(positions.data(), ends[2 * b + 1]) - at(positions.data(), ends[2 * b]);
-        barWind_[b] = windOnBar(windDirection_, windPressure_, d) * 0.5;
-    }
+    computeWind(positions.data(), 0, barCount());
     windFrozen_ = true;
 }
 

@@ -131,6 +131,8 @@ class ForceField {
     std::span<const std::uint32_t> barsOfKnot(std::size_t j) const;
 
   private:
+    /// Each bar's wind load on each of its ends, bars [begin, end), into barWind_.
+    void computeWind(const Vec3* positions, std::size_t begin, std::size_t end);
     /// The streaming pass of evaluate() for knots [begin, end) (see the top of this file).
     void streamKnots(const Vec3* positions, Vec3* force, std::size_t begin, std::size_t end) const;
     /// Bars [begin, end) of the streaming pass: adds their forces to those of their ends in
