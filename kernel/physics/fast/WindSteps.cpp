@@ -84,7 +84,9 @@ void NewtonRun::applyWindOperator(const std::vector<double>& v, std::vector<doub
         rhs_[3 * f + 1] = g.y;
         rhs_[3 * f + 2] = g.z;
     }
+    const auto t0 = Clock::now();
     analysis_.cholesky.solve(rhs_, pool_.get());
+    stats_.solveSeconds += secondsSince(t0);
     out.resize(v.size());
     for (std::size_t i = 0; i < v.size(); ++i)
         out[i] = v[i] - rhs_[i];
