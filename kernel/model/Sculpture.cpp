@@ -101,6 +101,10 @@ void checkPiece(const Sculpture& s, const Piece& p) {
     if (!(m.knotMass > 0 || m.linearDensity > 0))
         throw UserError(toString(p.id) + ": knot_mass and linear_density are both 0; a net must weigh something");
     if (p.onRail()) checkRailEdge(s, p, p.railTop(), "top");
+    if (p.bottom && p.rows < 2)
+        throw UserError(toString(p.id) + " has 1 row, so its last row is its top row, which " +
+                        "already hangs where it is attached; a piece tied to a rail by its last "
+                        "row needs at least 2 rows");
     if (p.bottom) checkRailEdge(s, p, *p.bottom, "last");
 }
 

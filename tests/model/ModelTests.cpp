@@ -366,6 +366,32 @@ TEST_CASE("a tube connected to a second rail has its last row fixed on that rail
     CHECK(c.system.hold[c.knotOf(p, 7, 4)].t == Approx(0.5));
 }
 
+TEST_CASE("a piece of one row is not tied to a rail by its last row, which is its top row") {
+    Sculpture s;
+    RailId top = edit(s, [](Sculpture& m) { return addRail(m, "top", polygonRail(16, 2.0, 0)); });
+    RailId bottom =
+        edit(s, [](Sculpture& m) { return addRail(m, "bottom", polygonRail(16, 1.0, -3)); });
+    PieceId band = edit(s, [&](Sculpture& m) {
+        return attachToRail(m, {top, 16, 0, 1, 0.6, 0, false});
+    });
+    PieceId tied = edit(s, [&](Sculpture& m) {
+        return attachToRail(m, {top, 16, 0, 8, 0.6, 0.5, false});
+    });
+    edit(s, [&](Sculpture& m) { connectToRail(m, tied, bottom, 0, false); return 0; });
+    const Sculpture before = s;
+    const std::string needle = "has 1 row, so its last row is its top row";
+    REQUIRE_THROWS_WITH(edit(s, [&](Sculpture& m) {
+                            connectToRail(m, band, bottom, 0, false);
+                            return 0;
+                        }),
+                        Contains(toString(band) + " " + needle));
+    REQUIRE_THROWS_WITH(edit(s, [&](Sculpture& m) { setRows(m, tied, 1); return 0; }),
+                        Contains(toString(tied) + " " + needle));
+    CHECK(sameModel(before, s));
+    edit(s, [&](Sculpture& m) { setRows(m, tied, 2); return 0; });
+    CHECK(s.piece(tied).rows == 2);
+}
+
 TEST_CASE("a sculpture far from (0, 0, 0) is compiled about the whole metre nearest its rails' "
           "centre, one about it where it stands") {
     const auto ringAt = [](const Vec3& centre) {
