@@ -68,6 +68,9 @@ class Curve {
     /// Polylines under Sampling::Parameter: t = (segment index + fraction) / segments.
     /// Throws UserError when t is NaN or infinite (as do the other queries).
     Vec3 pointAt(double t) const;
+    /// Rail position t as pointAt takes it: clamped to [0, 1] (open) or wrapped to [0, 1)
+    /// (closed). Throws UserError when t is NaN or infinite.
+    double normalizedPosition(double t) const;
     /// Unit tangent at rail position t (the rail's direction). At a polyline vertex it is the
     /// direction of the segment that starts there (of the last segment at an open end).
     Vec3 tangentAt(double t) const;
@@ -86,7 +89,6 @@ class Curve {
     Vec3 evaluate(double u) const;              // point at curve parameter u in [uMin_, uMax_]
     double parameterAt(double t) const;         // rail position t -> curve parameter u
     double positionOfParameter(double u) const; // curve parameter u -> rail position t
-    double normalizedPosition(double t) const;  // t clamped (open) or wrapped (closed) to [0, 1]
 };
 
 } // namespace netsculpt

@@ -219,8 +219,9 @@ class Builder {
     void fixOnRail(std::uint32_t k, const RailEdge& edge, int column) {
         MassSpringSystem& sys = out_.system;
         if (sys.fixed[k]) return; // the first rail that holds a knot places it
-        const double t = railPosition(edge, column);
-        sys.position[k] = s_.rail(edge.rail).curve().pointAt(t) - sys.origin;
+        const Curve& rail = s_.rail(edge.rail).curve();
+        const double t = rail.normalizedPosition(railPosition(edge, column)); // closed: in [0, 1)
+        sys.position[k] = rail.pointAt(t) - sys.origin;
         sys.fixed[k] = 1;
         sys.hold[k] = RailHold{edge.rail, t};
     }

@@ -366,6 +366,35 @@ TEST_CASE("a tube connected to a second rail has its last row fixed on that rail
     CHECK(c.system.hold[c.knotOf(p, 7, 4)].t == Approx(0.5));
 }
 
+TEST_CASE("a knot held on a closed rail has its rail position from 0 up to 1 and its place unchanged") {
+    Sculpture s;
+    RailId top = edit(s, [](Sculpture& m) { return addRail(m, "top", polygonRail(7, 2.0, 0)); });
+    RailId bottom =
+        edit(s, [](Sculpture& m) { return addRail(m, "bottom", polygonRail(7, 1.0, -3)); });
+    PieceId p = edit(s, [&](Sculpture& m) {
+        return attachToRail(m, {top, 12, 0, 6, 0.6, 0.9, false});
+    });
+    edit(s, [&](Sculpture& m) { connectToRail(m, p, bottom, 0.3, true); return 0; });
+    const auto c = compileSculpture(s);
+    const PieceKnots& knots = c.pieces.at(p);
+    int wrapped = 0;
+    for (int row : {0, 5})
+        for (int column = 0; column < 12; ++column) {
+            const RailHold& hold = c.system.hold[knots.at(row, column)];
+            CHECK(hold.t >= 0);
+            CHECK(hold.t < 1);
+            // The unwrapped position, at + column step (reversed on the lower rail), is the
+            // same point of the rail.
+            const double unwrapped = row == 0 ? 0.9 + column / 12.0 : 0.3 - column / 12.0;
+            wrapped += unwrapped < 0 || unwrapped >= 1;
+            const Curve& rail = s.rail(hold.rail).curve();
+            const Vec3 off =
+                c.system.position[knots.at(row, column)] + c.system.origin - rail.pointAt(unwrapped);
+            CHECK(off.norm() < 1e-12);
+        }
+    CHECK(wrapped == 10 + 8); // columns 2-11 above (t from 1.067), 4-11 below (from -0.033)
+}
+
 TEST_CASE("a piece of one row is not tied to a rail by its last row, which is its top row") {
     Sculpture s;
     RailId top = edit(s, [](Sculpture& m) { return addRail(m, "top", polygonRail(16, 2.0, 0)); });
