@@ -605,6 +605,36 @@ TEST_CASE("a split through the document changes no knot, bar or rest length") {
     requireSameSystem(doc.compiled(), before);
 }
 
+TEST_CASE("split parts that share a seam knot hold it at one place, on one rail") {
+    Document doc = fixtureDocument(); // a 12-column tube on the ring "top"
+    const CommandResult parts = doc.execute(SplitCommand{PieceId(1), 6});
+    REQUIRE(parts.pieces.size() == 2);
+    const PieceId left = parts.pieces[0], right = parts.pieces[1];
+    // The left part's last row on the ring "bottom" from t = 0 puts its column 6, the seam
+    // knot, at t = 0.5: the right part in line with it is tied there too.
+    doc.execute(ConnectToRailCommand{left, RailId(3), 0.0, false});
+    const std::uint64_t hashBefore = doc.hash();
+    const std::vector<std::pair<ConnectToRailCommand, std::string>> refused = {
+        {ConnectToRailCommand{right, RailId(3), 0.25, false}, "rail 3 (bottom) would hold it"},
+        {ConnectToRailCommand{right, RailId(2), 0.0, false}, "rail 2 (line) would hold it"},
+    };
+    for (const auto& [command, mentions] : refused) {
+        INFO(mentions);
+        CHECK_THROWS_WITH(doc.execute(command),
+                          Contains("the knot at row 5, column 0 is shared with another piece") &&
+                              Contains("on rail 3 (bottom) at t = 0.5") && Contains(mentions));
+        CHECK(doc.hash() == hashBefore);
+    }
+    doc.execute(ConnectToRailCommand{right, RailId(3), 0.5, false});
+    const MassSpringSystem& sys = doc.compiled().system;
+    const PieceKnots& rightKnots = doc.compiled().pieces.at(right);
+    const std::uint32_t seam = rightKnots.at(5, 0);
+    CHECK(seam == doc.compiled().pieces.at(left).at(5, 6));
+    CHECK(sys.fixed[seam]);
+    CHECK(sys.hold[seam].rail == RailId(3));
+    CHECK(std::count(sys.fixed.begin(), sys.fixed.end(), 1) == 12 + 12);
+}
+
 TEST_CASE("a relaxed shape carried across an edit that moves the system's origin stays where it "
           "hung") {
     // A ring at a site 700 m east, relaxed; then a second ring 60 m further east holds a new
