@@ -40,6 +40,13 @@ Image readPng(const fs::path& path) {
     return image;
 }
 
+std::string readFile(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream bytes;
+    bytes << in.rdbuf();
+    return bytes.str();
+}
+
 /// An empty output folder for the run `name`.
 fs::path outputFolder(const std::string& name) {
     const fs::path out = fs::path(NETSCULPT_BINARY_DIR) / "tests" / "studio" / name;
@@ -225,6 +232,24 @@ TEST_CASE("studio: a Lua script's commands become the session's journal") {
         if (const auto* attach = std::get_if<AttachToPieceCommand>(&entry.command))
             gears.push_back(toString(attach->args.gear));
     CHECK(gears == std::vector<std::string>{"3", "2", "1", "1/2", "1/3"});
+}
+
+TEST_CASE("studio: a --journal that holds work is kept, never journaled over unasked") {
+    const fs::path out = outputFolder("journal-kept");
+    Document demo;
+    buildDemoSculpture(demo);
+    demo.save(out / "design.netj");
+    fs::copy_file(out / "design.netj", out / "out.netj");
+    const std::string work = readFile(out / "out.netj");
+    // No design given: the studio asks whether to go on with it, and leaves it as it is.
+    runUnderXvfb(out, "--exit-after-frames 3 --no-relax");
+    CHECK(readFile(out / "out.netj") == work);
+    CHECK_FALSE(fs::exists(out / "out.previous.netj"));
+    // A design given: the work is kept beside it before the session journals afresh.
+    const std::string log = runUnderXvfb(out, "--demo --exit-after-frames 3 --no-relax");
+    CHECK_THAT(log, Catch::Matchers::Contains("held work: it is kept as"));
+    CHECK(readFile(out / "out.previous.netj") == work);
+    CHECK(readJournal(out / "out.netj").entries.size() == 7); // the demo's, journaled anew
 }
 
 TEST_CASE("studio: a relaxed snapshot opens as it is, without a soft preview") {

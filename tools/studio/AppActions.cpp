@@ -77,19 +77,30 @@ void App::buildInitialDocument() {
         doc_->markClean();
     }
     const bool startsEmpty = !options_.open && !options_.demo && options_.demoKnots == 0 && !options_.script;
-    if (startsEmpty && !options_.journal && hasEntries(sessionPath_)) restorePending_ = true;
+    if (startsEmpty && hasEntries(sessionPath_)) restorePending_ = true;
     else attachSession();
     interaction_->setDocument(*doc_);
 }
 
 void App::attachSession() {
     std::filesystem::create_directories(sessionPath_.parent_path().empty() ? "." : sessionPath_.parent_path());
-    if (!options_.journal && std::filesystem::exists(sessionPath_)) {
-        // The default session is kept once more, in case the restore question was answered wrongly.
+    if (hasEntries(sessionPath_)) {
+        // Work in the session journal (the default one or --journal's) is kept once more before
+        // the journal starts afresh: in case the restore question was answered wrongly, or
+        // --journal named a design's own journal.
         std::filesystem::path previous = sessionPath_;
         previous.replace_extension(".previous.netj");
-        std::error_code ignored;
-        std::filesystem::copy_file(sessionPath_, previous, std::filesystem::copy_options::overwrite_existing, ignored);
+        std::error_code failed;
+        std::filesystem::copy_file(sessionPath_, previous,
+                                   std::filesystem::copy_options::overwrite_existing, failed);
+        if (failed)
+            throw UserError("cannot keep " + sessionPath_.string() + " as " + previous.string() +
+                            " (" + failed.message() + "), so it is not journaled over; give " +
+                            "--journal a path of its own");
+        if (options_.journal)
+            notify(sessionPath_.string() + " held work: it is kept as " + previous.string() +
+                       ", and the session is journaled afresh",
+                   false);
     }
     doc_->attachJournal(sessionPath_);
 }
