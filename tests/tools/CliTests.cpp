@@ -152,6 +152,28 @@ TEST_CASE("run: exit code 0 with outputs and a journal, 1 with a one-line messag
     CHECK_THAT(unsafe.output, Contains("--unsafe: the sandbox is off"));
 }
 
+TEST_CASE("run: without --out a script reads and writes in out/<script name>, not where the "
+          "artist stands", "[cli]") {
+    const fs::path home = freshFolder("run-home");
+    std::ofstream(home / "secret.txt") << "private\n";
+    fs::create_directories(home / "shared");
+    const fs::path script = writeScript(home / "shared", "peek.lua", R"(local ns = require "netsculpt"
+local f = io.open(ns.output_dir() .. "/secret.txt")
+print("read: " .. tostring(f and f:read("l")))
+local doc = ns.new()
+local ring = doc:add_rail{points = ns.circle{radius = 2, points = 24}, closed = true}
+doc:attach_to_rail{rail = ring, columns = 12, rows = 3, bar = 0.8}
+doc:export("secret.txt.csv")
+)");
+    const Ran ran = runCli("run " + quoted(script), "cd " + quoted(home) + " &&");
+    INFO(ran.output);
+    CHECK(ran.exitCode == 0);
+    CHECK_THAT(ran.output, Contains("read: nil") && Contains("outputs in out/peek"));
+    CHECK(fs::is_regular_file(home / "out" / "peek" / "secret.txt.csv"));
+    CHECK(fs::is_regular_file(home / "out" / "peek" / "peek.netj"));
+    CHECK_FALSE(fs::exists(home / "secret.txt.csv"));
+}
+
 TEST_CASE("replay, to-lua, relax, export and report on a journal", "[cli]") {
     const fs::path dir = freshFolder("journal");
     const fs::path script = writeScript(dir, "small.lua", kSmallSculpture);

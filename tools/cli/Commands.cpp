@@ -59,9 +59,9 @@ std::string summary(const Document& doc) {
            std::to_string(system.barCount()) + " bars";
 }
 
-lua::ScriptOptions scriptOptions(const RunArgs& a, ProgressLine& progress) {
+lua::ScriptOptions scriptOptions(const RunArgs& a, const fs::path& out, ProgressLine& progress) {
     lua::ScriptOptions o;
-    o.outputDir = a.out;
+    o.outputDir = out;
     o.unsafe = a.unsafe;
     if (!(a.maxMemoryMiB >= 0) || !std::isfinite(a.maxMemoryMiB))
         throw UserError("--max-memory must be a number of MiB >= 0, got " +
@@ -90,7 +90,10 @@ int runScript(const RunArgs& a, Verbosity verbosity) {
     std::error_code error;
     if (!fs::is_regular_file(a.script, error))
         throw UserError("there is no script at " + a.script.string());
-    createFolder(a.out);
+    // A folder of the run's own by default: a shared script reads and writes in its output
+    // folder, which must not be wherever the artist happens to stand (their home, say).
+    const fs::path out = a.out.empty() ? fs::path("out") / a.script.stem() : a.out;
+    createFolder(out);
     if (a.unsafe)
         std::fprintf(
             stderr,
@@ -98,7 +101,7 @@ int runScript(const RunArgs& a, Verbosity verbosity) {
             "read and write any file\n",
             a.script.string().c_str());
     ProgressLine progress(verbosity);
-    const lua::ScriptOptions options = scriptOptions(a, progress);
+    const lua::ScriptOptions options = scriptOptions(a, out, progress);
     const auto start = std::chrono::steady_clock::now();
     const lua::ScriptResult result = lua::runScriptFile(a.script, options);
     const double seconds =
@@ -111,7 +114,7 @@ int runScript(const RunArgs& a, Verbosity verbosity) {
     }
     if (verbosity != Verbosity::Quiet) {
         std::fprintf(stderr, "netsculpt: ran %s in %.1f s; outputs in %s\n",
-                     a.script.string().c_str(), seconds, a.out.string().c_str());
+                     a.script.string().c_str(), seconds, out.string().c_str());
         for (const fs::path& journal : result.journals)
             std::fprintf(stderr, "netsculpt: journal %s\n", journal.string().c_str());
     }

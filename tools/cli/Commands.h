@@ -14,7 +14,7 @@ namespace netsculpt::cli {
 struct RunArgs {
     std::filesystem::path script;
     std::vector<std::string> args;   ///< the script's arguments (arg[1..])
-    std::filesystem::path out = "."; ///< the output folder (created when missing)
+    std::filesystem::path out; ///< the output folder (created when missing); empty: out/<script>
     bool unsafe = false;
     double maxMemoryMiB = 512;    ///< 0 = no limit
     double maxInstructions = 1e9; ///< 0 = no budget

@@ -56,8 +56,8 @@ void addRun(CLI::App& app, Options& o) {
         "args", o.run.args,
         "Arguments for the script (its global `arg`); put -- before ones starting with -");
     run->add_option("--out,-o", o.run.out,
-                    "Output folder: where doc:save/doc:export write and the journal goes")
-        ->capture_default_str();
+                    "Output folder: where doc:save/doc:export write and the journal goes "
+                    "(default: out/<script name>)");
     run->add_flag("--unsafe", o.run.unsafe, "Lift the sandbox (file, process and C module access)");
     run->add_option("--max-memory", o.run.maxMemoryMiB,
                     "Memory limit of the script's Lua state, MiB (0 = none)")
