@@ -4,6 +4,8 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <sys/wait.h>
 
@@ -33,6 +35,13 @@ inline Ran runCli(const std::string& arguments, const std::string& environment =
     const int status = pclose(pipe);
     ran.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return ran;
+}
+
+inline std::string readFile(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream bytes;
+    bytes << in.rdbuf();
+    return bytes.str();
 }
 
 /// A fresh folder for a test under the build tree.

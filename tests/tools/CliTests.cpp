@@ -213,6 +213,16 @@ TEST_CASE("replay, to-lua, relax, export and report on a journal", "[cli]") {
     CHECK(capped.exitCode == 3);
     CHECK_THAT(capped.output, Contains("stopped (step limit) after 1 steps"));
     CHECK(fs::is_regular_file(dir / "capped" / "small.nets"));
+    // Its input is only read: an output that would be the input itself is refused, unwritten.
+    const std::string snapshotBytes = readFile(snapshot);
+    const Ran over = runCli("relax " + quoted(snapshot) + " --max-steps 1 --out " +
+                            quoted(dir / "relaxed" / "."));
+    CHECK(over.exitCode == 1);
+    CHECK_THAT(over.output, Contains("over its input") && Contains("give --out another folder"));
+    CHECK(readFile(snapshot) == snapshotBytes);
+    const Ran replayOver = runCli("replay " + quoted(journal) + " --out " + quoted(dir));
+    CHECK(replayOver.exitCode == 1);
+    CHECK(fs::file_size(journal) == journalBytes);
 
     const Ran exported =
         runCli("export " + quoted(snapshot) + " " + quoted(dir / "x" / "knots.csv") + " " +

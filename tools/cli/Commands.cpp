@@ -125,7 +125,18 @@ int runScript(const RunArgs& a, Verbosity verbosity) {
     return 0;
 }
 
+/// Refuses an output that is the input itself: DOC is only read, never written.
+void checkNotInput(const fs::path& output, const fs::path& input, const char* command) {
+    std::error_code error;
+    if (fs::equivalent(output, input, error))
+        throw UserError(std::string(command) + " would write " + output.string() +
+                        " over its input " + input.string() +
+                        ", which is only read; give --out another folder");
+}
+
 int replayJournal(const fs::path& journal, const fs::path& out, Verbosity verbosity) {
+    if (!out.empty())
+        checkNotInput(out / (journal.stem().string() + ".netj"), journal, "replay");
     Document doc = openDocument(journal, verbosity);
     std::cout << journal.string() << ": " << summary(doc) << "; hash " << hashText(doc.hash())
               << "\n";
@@ -146,6 +157,8 @@ int journalToLua(const fs::path& journal) {
 }
 
 int relaxDocument(const RelaxArgs& a, Verbosity verbosity) {
+    const fs::path snapshot = a.out / (a.document.stem().string() + ".nets");
+    checkNotInput(snapshot, a.document, "relax");
     Document doc = openDocument(a.document, verbosity);
     createFolder(a.out);
     DocumentRelaxOptions options;
@@ -158,7 +171,6 @@ int relaxDocument(const RelaxArgs& a, Verbosity verbosity) {
         options.solver.progress = [&progress](const RelaxProgress& p) { progress.update(p); };
     const RelaxResult result = doc.relax(options);
     progress.finish(result);
-    const fs::path snapshot = a.out / (a.document.stem().string() + ".nets");
     doc.saveSnapshot(snapshot);
     std::cout << a.document.string() << ": " << describeRelaxResult(result) << "\n";
     if (verbosity != Verbosity::Quiet)
