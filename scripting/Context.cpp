@@ -14,12 +14,28 @@ int defaultContextGc(lua_State* L) {
     return 0;
 }
 
+/// The folder of the script a stock interpreter runs (its global arg[0], when that names a
+/// file), else the current directory.
+std::filesystem::path stockScriptFolder(lua_State* L) {
+    std::error_code error;
+    const std::filesystem::path current = std::filesystem::current_path(error);
+    std::filesystem::path script;
+    const int top = lua_gettop(L);
+    if (lua_getglobal(L, "arg") == LUA_TTABLE && lua_rawgeti(L, -1, 0) == LUA_TSTRING)
+        script = lua_tostring(L, -1);
+    lua_settop(L, top);
+    if (script.empty() || !std::filesystem::is_regular_file(script, error))
+        return current;
+    return std::filesystem::absolute(script, error).parent_path();
+}
+
 ScriptContext* makeDefaultContext(lua_State* L) {
+    std::error_code error;
+    const std::filesystem::path scriptFolder = stockScriptFolder(L);
     void* memory = lua_newuserdatauv(L, sizeof(ScriptContext), 0);
     auto* context = new (memory) ScriptContext{};
-    std::error_code error;
-    context->scriptDir = std::filesystem::current_path(error);
-    context->outputDir = context->scriptDir;
+    context->scriptDir = scriptFolder;
+    context->outputDir = std::filesystem::current_path(error);
     lua_createtable(L, 0, 1);
     lua_pushcfunction(L, defaultContextGc);
     lua_setfield(L, -2, "__gc");

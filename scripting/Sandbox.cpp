@@ -52,7 +52,11 @@ void checkFileName(const std::string& text, const char* call) {
 fs::path resolveReadPath(const ScriptContext& context, const std::string& text, const char* call) {
     checkFileName(text, call);
     const fs::path given(text);
-    const fs::path full = given.is_absolute() ? given : context.scriptDir / given;
+    fs::path full = given.is_absolute() ? given : context.scriptDir / given;
+    std::error_code error;
+    if (!given.is_absolute() && !fs::exists(full, error) &&
+        fs::exists(context.outputDir / given, error))
+        full = context.outputDir / given; // what the script saved there itself, say
     if (!context.sandboxed)
         return full;
     const fs::path resolved = canonicalOrSelf(full);

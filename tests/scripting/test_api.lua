@@ -288,6 +288,14 @@ T.case("relax, export, report, save and open", function()
   doc:save_snapshot("api/design.nets")
   local snap = ns.open(ns.output_dir() .. "/api/design.nets")
   T.eq(snap:knots(snap:pieces()[1])[4][1][3], knots[4][1][3]) -- the relaxed shape, bit for bit
+  -- A relative name the script saved opens too: a read not found in the script's folder is
+  -- looked for in the output folder (DESIGN's save-then-open).
+  T.eq(ns.open("api/design.nets"):hash(), snap:hash())
+end)
+
+T.case("the script's folder is the folder of the script, under netsculpt run and stock lua5.4",
+       function()
+  T.eq(ns.script_dir(), arg[0]:match("^(.*)/[^/]*$"))
 end)
 
 T.case("relax with wind and without continuation", function()
