@@ -29,6 +29,14 @@ bool forcesComputable(MassSpringSystem system, const std::vector<Vec3>& position
     return std::isfinite(residual(system));
 }
 
+/// Whether a snapshot's relaxed shape at `positions` is still the equilibrium it was saved as:
+/// its residual within twice the saved one (the same bits when the origin is the saved one).
+bool stillRelaxed(MassSpringSystem system, const std::vector<Vec3>& positions,
+                  const SnapshotShape& saved) {
+    system.position = positions;
+    return residual(system, saved.wind) <= 2 * *saved.residual + 1e-12;
+}
+
 /// The shape a state of the history had when the document left it. Only relaxed shapes need
 /// their positions: an unrelaxed state's shape is its fresh compile, rebuilt bit for bit.
 struct Memo {
@@ -321,7 +329,12 @@ Document Document::load(const std::filesystem::path& file, std::vector<std::stri
     if (shift != Vec3{})
         for (Vec3& p : positions) p += shift;
     const bool fits = positions.size() == st.compiled.system.knotCount();
-    if (fits && !forcesComputable(st.compiled.system, positions)) {
+    if (fits && data.shape.relaxed && data.shape.residual &&
+        !stillRelaxed(st.compiled.system, positions, data.shape)) {
+        report({file.string() + ": the saved shape is not the equilibrium it was saved as (the "
+                                "file was edited or damaged); starting from the initial geometry"},
+               warnings);
+    } else if (fits && !forcesComputable(st.compiled.system, positions)) {
         report({file.string() + ": the saved shape's knots are too far apart for the forces "
                                 "between them to be computed (a coordinate beyond about 1e150 m); "
                                 "starting from the initial geometry"},
@@ -366,9 +379,11 @@ void Document::save(const std::filesystem::path& path) {
 void Document::saveSnapshot(const std::filesystem::path& path) const {
     const State& st = *state_;
     const MassSpringSystem& system = st.compiled.system;
+    const std::optional<double> saved =
+        st.relaxed ? std::optional(residual(system, st.wind)) : std::nullopt;
     writeFileDurably(path, encodeSnapshot(st.current(), st.compacted(),
                                           {system.origin, system.position, st.wind, st.warm,
-                                           st.relaxed}));
+                                           st.relaxed, saved}));
 }
 
 CommandResult Document::execute(const Command& command, bool merge) {

@@ -41,6 +41,8 @@ std::string encodeSnapshot(const Sculpture& model, const std::vector<JournalEntr
     if (shape.wind)
         j["shape"]["wind"] = Json{{"direction", codec::vec3Json(shape.wind->direction, "wind")},
                                   {"pressure", codec::number(shape.wind->pressure, "wind")}};
+    if (shape.residual)
+        j["shape"]["residual"] = codec::number(*shape.residual, "the shape's residual");
     std::string text = std::string(kSnapshotMagic) + " " + std::to_string(kSnapshotFormat) + "\n";
     try {
         text += j.dump(-1, ' ', true);
@@ -92,6 +94,7 @@ SnapshotData decodeSnapshot(std::string_view text, const std::string& name) {
             validatedWindDirection(wind); // UserError for a zero, infinite or negative one
             out.shape.wind = wind;
         }
+        if (sr.has("residual")) out.shape.residual = sr.real("residual");
         const Json& flat = sr.raw("positions");
         if (!flat.is_array() || flat.size() % 3 != 0)
             throw UserError("\"positions\" must be a flat array of x, y, z numbers");

@@ -5,7 +5,8 @@
 //    gravity}, "history": [the compacted journal entries that build the model],
 //    "shape": {"warm": bool, "relaxed": bool, "origin": [x, y, z],
 //              "positions": [x0, y0, z0, x1, ...],
-//              "wind": {"direction": [x, y, z], "pressure": q} (only when relaxed under one)}}
+//              "wind": {"direction": [x, y, z], "pressure": q} (only when relaxed under one),
+//              "residual": r (only when relaxed)}}
 // The positions are measured from the origin (MassSpringSystem::origin), so that a shape relaxed
 // in site coordinates is saved to the last bit. Format 1 had no origin: its positions are the
 // sculpture's coordinates (origin (0, 0, 0)), and it is still read.
@@ -37,6 +38,9 @@ struct SnapshotShape {
     std::optional<Wind> wind;    ///< the wind the shape was relaxed under (Document::shapeWind)
     bool warm = false;           ///< the positions come from a relaxation
     bool relaxed = false;        ///< ... that converged
+    /// The relaxed shape's residual when it was saved: a loaded shape far above it was edited or
+    /// damaged, and is not taken as relaxed. Absent in older files.
+    std::optional<double> residual;
 };
 
 struct SnapshotData {

@@ -451,6 +451,48 @@ TEST_CASE("a snapshot whose knots are too far apart for their forces starts from
     CHECK(std::isfinite(residual(loaded.compiled().system)));
 }
 
+TEST_CASE("a relaxed snapshot whose shape was edited or damaged opens as not relaxed, from Eq. 2") {
+    TempDir dir;
+    Document saved = journaledDocument(dir / "j.netj");
+    const std::vector<Vec3> initial = saved.compiled().system.position;
+    DocumentRelaxOptions options;
+    options.solver.maxSeconds = 30;
+    REQUIRE(saved.relax(options).converged);
+    saved.saveSnapshot(dir / "snap.nets");
+    const std::string bytes = readBytes(dir / "snap.nets");
+    REQUIRE(Document::load(dir / "snap.nets").isRelaxed());
+    const auto damaged = [&](const std::string& key, const std::string& value) {
+        std::string text = bytes;
+        const std::size_t first = text.find("\"" + key + "\":") + key.size() + 3;
+        const std::size_t end = text.find_first_of(",]}", first + 1);
+        text.replace(first + (text[first] == '['), end - first - (text[first] == '['), value);
+        writeBytes(dir / "damaged.nets", text);
+        std::vector<std::string> warnings;
+        const Document loaded = Document::load(dir / "damaged.nets", &warnings);
+        INFO(key << " = " << value);
+        REQUIRE(warnings.size() == 1);
+        CHECK_THAT(warnings[0], Contains("the saved shape is not the equilibrium it was saved as"));
+        CHECK_FALSE(loaded.isRelaxed());
+        CHECK(loaded.hash() == saved.hash()); // the model and its history are kept
+        CHECK(loaded.compiled().system.position == initial);
+    };
+    // The third coordinate of a free knot half a metre off (knot 0 hangs on the rail).
+    const std::size_t k = std::size_t(std::find(saved.compiled().system.fixed.begin(),
+                                                saved.compiled().system.fixed.end(), 0) -
+                                      saved.compiled().system.fixed.begin());
+    std::string shifted = bytes;
+    std::size_t at = shifted.find("\"positions\":[") + 13;
+    for (std::size_t n = 0; n < 3 * k + 2; ++n) at = shifted.find(',', at) + 1;
+    const std::size_t end = shifted.find_first_of(",]", at);
+    const double z = std::stod(shifted.substr(at, end - at));
+    shifted.replace(at, end - at, formatNumber(z + 0.5));
+    writeBytes(dir / "shifted.nets", shifted);
+    std::vector<std::string> warnings;
+    CHECK_FALSE(Document::load(dir / "shifted.nets", &warnings).isRelaxed());
+    CHECK(warnings.size() == 1);
+    damaged("origin", "1e308");
+}
+
 TEST_CASE("a journal becomes the equivalent Lua script") {
     TempDir dir;
     Document doc = journaledDocument(dir / "j.netj");
