@@ -87,7 +87,16 @@ TEST_CASE("Numbers out of range are usage errors that say what is allowed", "[cl
           std::pair{"relax d.netj --max-seconds -5", "--max-seconds: must be a number > 0, got -5"},
           std::pair{"run x.lua --max-memory -3", "--max-memory: must be a number >= 0, got -3"},
           std::pair{"export d.netj x.obj --tube-radius -1",
-                    "--tube-radius: must be a number >= 0, got -1"}}) {
+                    "--tube-radius: must be a number >= 0, got -1"},
+          std::pair{"relax d.netj --tolerance inf", "--tolerance: must be a number > 0, got inf"},
+          std::pair{"relax d.netj --max-seconds 1e400",
+                    "--max-seconds: must be a number > 0, got 1e400"},
+          std::pair{"relax d.netj --max-steps -5",
+                    "--max-steps: must be a whole number from -1 to 10^15, got -5"},
+          std::pair{"relax d.netj --max-steps 99999999999999999999",
+                    "--max-steps: must be a whole number from -1 to 10^15, got 9999999999999"},
+          std::pair{"run x.lua --max-instructions 1.5",
+                    "--max-instructions: must be a whole number from 0 to 10^15, got 1.5"}}) {
         INFO(bad);
         const Ran r = runCli(bad);
         CHECK(r.exitCode == 2);
@@ -157,7 +166,8 @@ TEST_CASE("run: without --out a script reads and writes in out/<script name>, no
     const fs::path home = freshFolder("run-home");
     std::ofstream(home / "secret.txt") << "private\n";
     fs::create_directories(home / "shared");
-    const fs::path script = writeScript(home / "shared", "peek.lua", R"(local ns = require "netsculpt"
+    const fs::path script = writeScript(home / "shared", "peek.lua", R"(
+local ns = require "netsculpt"
 local f = io.open(ns.output_dir() .. "/secret.txt")
 print("read: " .. tostring(f and f:read("l")))
 local doc = ns.new()

@@ -10,6 +10,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <iostream>
 
 #ifndef NETSCULPT_VERSION
@@ -42,11 +43,25 @@ CLI::Validator numberAbove(bool zeroAllowed) {
         [zeroAllowed, allowed](std::string& text) -> std::string {
             double value = 0;
             const bool number = CLI::detail::lexical_cast(text, value);
-            if (number && (value > 0 || (zeroAllowed && value == 0)))
+            if (number && std::isfinite(value) && (value > 0 || (zeroAllowed && value == 0)))
                 return {};
             return "must be " + allowed + ", got " + text;
         },
         zeroAllowed ? "NUMBER >= 0" : "NUMBER > 0");
+}
+
+/// A whole number from `lowest` to 10^15 (a count of steps or instructions).
+CLI::Validator wholeNumberFrom(int lowest) {
+    const std::string allowed = "a whole number from " + std::to_string(lowest) + " to 10^15";
+    return CLI::Validator(
+        [lowest, allowed](std::string& text) -> std::string {
+            double value = 0;
+            const bool number = CLI::detail::lexical_cast(text, value);
+            if (number && value >= lowest && value <= 1e15 && value == std::floor(value))
+                return {};
+            return "must be " + allowed + ", got " + text;
+        },
+        "WHOLE NUMBER >= " + std::to_string(lowest));
 }
 
 void addRun(CLI::App& app, Options& o) {
@@ -66,7 +81,7 @@ void addRun(CLI::App& app, Options& o) {
     run->add_option("--max-instructions", o.run.maxInstructions,
                     "Lua instruction budget (0 = none)")
         ->capture_default_str()
-        ->check(numberAbove(true));
+        ->check(wholeNumberFrom(0));
     run->add_option("--backend", o.run.backend,
                     "Relax every doc:relax with this backend (overrides the script)")
         ->check(CLI::IsMember(relaxerNames()));
@@ -99,7 +114,8 @@ void addRelax(CLI::App& app, Options& o) {
         ->capture_default_str()
         ->check(numberAbove(false));
     relax->add_option("--max-steps", o.relax.maxSteps, "Step limit (-1 = none)")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(wholeNumberFrom(-1));
     relax->add_option("--out,-o", o.relax.out, "Output folder")->capture_default_str();
 }
 
