@@ -3,6 +3,7 @@
 #include "model/Error.h"
 
 #include <cstdlib>
+#include <fstream>
 #include <iostream>
 #include <system_error>
 
@@ -41,12 +42,31 @@ std::string replaceAll(std::string text, const std::string& from, const std::str
     return text;
 }
 
+/// A design to read is a regular file with at least a whole header line.
+void checkReadable(const fs::path& path) {
+    std::error_code error;
+    const fs::file_status status = fs::status(path, error);
+    if (fs::is_directory(status))
+        throw UserError("cannot open " + path.string() +
+                        ": it is a folder; expected a journal (.netj) or snapshot (.nets) file");
+    if (fs::exists(status) && !fs::is_regular_file(status))
+        throw UserError("cannot open " + path.string() + ": it is not a regular file (a device " +
+                        "or pipe); expected a journal (.netj) or snapshot (.nets) file");
+    if (!fs::exists(status))
+        throw UserError("cannot open " + path.string() + ": no such file");
+    std::ifstream in(path, std::ios::binary);
+    std::string header;
+    if (!std::getline(in, header) || in.eof())
+        throw UserError(path.string() + " holds no sculpture: it is " +
+                        (header.empty() ? "empty" : "cut off within its header line") +
+                        "; a journal or snapshot starts with a whole header line");
+}
+
 } // namespace
 
 Document openReadOnly(const fs::path& path, std::vector<std::string>* warnings) {
     std::error_code error;
-    if (!fs::is_regular_file(path, error))
-        throw UserError("cannot open " + path.string() + ": no such file");
+    checkReadable(path);
     const TemporaryFolder folder;
     const fs::path copy = folder.path() / path.filename();
     fs::copy_file(path, copy, error);

@@ -297,6 +297,30 @@ TEST_CASE("replay, to-lua, relax, export and report on a journal", "[cli]") {
     CHECK_THAT(broken.output, StartsWith("netsculpt: error: "));
 }
 
+TEST_CASE("a folder, a device, an empty or cut-off file as a design or script is an error that "
+          "says which", "[cli]") {
+    const fs::path dir = freshFolder("not-a-design");
+    fs::create_directories(dir / "folder.netj");
+    std::ofstream(dir / "empty.nets").flush();
+    std::ofstream(dir / "torn.netj") << "netscul";
+    for (const auto& [arguments, message] :
+         {std::pair{"report " + quoted(dir / "folder.netj"), "it is a folder; expected a journal"},
+          std::pair{std::string("report /dev/null"), "it is not a regular file"},
+          std::pair{"relax " + quoted(dir / "empty.nets") + " --out " + quoted(dir / "out"),
+                    "empty.nets holds no sculpture: it is empty"},
+          std::pair{"export " + quoted(dir / "torn.netj") + " " + quoted(dir / "k.csv"),
+                    "torn.netj holds no sculpture: it is cut off within its header line"},
+          std::pair{"run " + quoted(dir / "folder.netj"),
+                    "folder.netj is a folder; expected a Lua"}}) {
+        INFO(arguments);
+        const Ran r = runCli(arguments);
+        CHECK(r.exitCode == 1);
+        CHECK_THAT(r.output, StartsWith("netsculpt: error: ") && Contains(message));
+    }
+    CHECK_FALSE(fs::exists(dir / "out" / "empty.nets"));
+    CHECK_FALSE(fs::exists(dir / "k.csv"));
+}
+
 TEST_CASE("relax warns when the relaxed net stretches bars beyond what rope can do", "[cli]") {
     // Three rows of 0.25 m bars tied between rails 2.8 m apart: only a 50 % stretch reaches.
     const fs::path dir = freshFolder("cli-overstretch");

@@ -88,6 +88,8 @@ lua::ScriptOptions scriptOptions(const RunArgs& a, const fs::path& out, Progress
 
 int runScript(const RunArgs& a, Verbosity verbosity) {
     std::error_code error;
+    if (fs::is_directory(a.script, error))
+        throw UserError(a.script.string() + " is a folder; expected a Lua script file");
     if (!fs::is_regular_file(a.script, error))
         throw UserError("there is no script at " + a.script.string());
     // A folder of the run's own by default: a shared script reads and writes in its output
