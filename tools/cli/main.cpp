@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <new>
 
 #ifndef NETSCULPT_VERSION
 #define NETSCULPT_VERSION "unknown"
@@ -223,6 +224,9 @@ int main(int argc, char** argv) {
         return dispatch(app, o);
     } catch (const UserError& e) {
         std::cerr << "netsculpt: error: " << e.what() << "\n";
+    } catch (const std::bad_alloc&) {
+        std::cerr << "netsculpt: error: out of memory: the sculpture (or a file's numbers) needs "
+                     "more memory than this machine gives it; nothing was written\n";
     } catch (const std::exception& e) {
         std::cerr << "netsculpt: error: " << e.what() << "\n";
     }
