@@ -5,10 +5,13 @@
 
 #include "App.h"
 
+#include "model/Compiler.h"
+
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
 #include <cmath>
+#include <cstdio>
 
 namespace netsculpt::studio {
 
@@ -23,6 +26,16 @@ bool editDouble(const char* label, double value, double& out, const char* format
 
 std::string railLabel(const Sculpture& s, RailId id) {
     return s.hasRail(id) ? toString(id) + " (" + s.rail(id).name + ")" : toString(id);
+}
+
+/// Where a rail edge's column 0 is on its rail, "rail 1 (crown) at t = 0.25": a split part's
+/// edge keeps its parent's start and counts its columns from its offset.
+std::string edgeLabel(const Sculpture& s, const RailEdge& edge) {
+    if (!s.hasRail(edge.rail)) return toString(edge.rail);
+    const double t = s.rail(edge.rail).curve().normalizedPosition(railPosition(edge, 0));
+    char at[32];
+    std::snprintf(at, sizeof at, " at t = %.4g", t);
+    return railLabel(s, edge.rail) + at;
 }
 
 double magnitude(const nlohmann::json& v) {
@@ -84,15 +97,18 @@ void Panels::drawPiece(App& app, PieceId id) {
     }
     ImGui::TextDisabled("%s, %d knots", p.closed ? "closed tube" : "open sheet", p.rows * p.columns);
     if (p.onRail())
-        ImGui::TextDisabled("top: %s at t = %.4g", railLabel(s, p.railTop().rail).c_str(), p.railTop().at);
+        ImGui::TextDisabled("top: %s", edgeLabel(s, p.railTop()).c_str());
     else
         ImGui::TextDisabled("top: below %s, gear %s", toString(p.parentTop().parents.front()).c_str(),
                             toString(p.parentTop().gear).c_str());
     if (p.bottom) {
-        ImGui::TextDisabled("bottom: %s at t = %.4g", railLabel(s, p.bottom->rail).c_str(), p.bottom->at);
-        ImGui::SameLine();
+        ImGui::TextDisabled("bottom: %s", edgeLabel(s, *p.bottom).c_str());
         if (ImGui::SmallButton("disconnect")) ui.execute(DisconnectCommand{id});
     }
+    const PieceId left = s.leftPartner(id), right = s.rightPartner(id);
+    if (left || right)
+        ImGui::TextDisabled("seams: %s%s%s", left ? ("left " + toString(left)).c_str() : "",
+                            left && right ? ", " : "", right ? ("right " + toString(right)).c_str() : "");
 
     // Bar lengths: by column (first, last) or by row (top, last row).
     const bool byRow = p.bar.axis == BarAxis::Row;
