@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 namespace netsculpt {
@@ -245,35 +246,62 @@ void Interaction::dragHandleTo(double y) {
     const Sculpture& s = doc_->sculpture();
     if (!h.piece || !s.hasPiece(h.piece)) return;
     const Piece& p = s.piece(h.piece);
-    std::optional<Command> command;
-    double value = lastApplied_;
+    const PieceId id = h.piece;
+    std::function<Command(double)> commandFor;
+    double value = lastApplied_, unit = 1;
     switch (h.kind) {
     case HandleKind::RowsEnd:
         value = std::max(1, int(dragStartValue_) + steps(down, settings_.pixelsPerRow));
-        command = SetRowsCommand{h.piece, int(value)};
+        commandFor = [id](double v) { return SetRowsCommand{id, int(v)}; };
         break;
     case HandleKind::ColumnsEdge:
         if (p.onRail()) { // up = smaller spacing = more columns
             value = std::max(p.closed ? 3 : 2, int(dragStartValue_) + steps(-down, settings_.pixelsPerColumn));
-            command = SetColumnsCommand{h.piece, int(value)};
+            commandFor = [id](double v) { return SetColumnsCommand{id, int(v)}; };
         } else { // below a piece: step through the gears that divide the parent's row
             const auto ladder = gearLadder(s, p);
             if (ladder.empty()) return;
             value = std::clamp(int(dragStartValue_) + steps(-down, settings_.pixelsPerGear), 0, int(ladder.size()) - 1);
-            command = SetGearCommand{h.piece, ladder[std::size_t(value)]};
+            commandFor = [id, ladder](double v) { return SetGearCommand{id, ladder[std::size_t(v)]}; };
         }
         break;
     case HandleKind::BarEnd: { // up = shorter, down = longer; whole millimetres
         const double length = std::round((dragStartValue_ + down * settings_.barMetresPerPixel) * 1000) / 1000;
         value = std::max(0.001, length);
-        command = SetBarLengthCommand{h.piece, h.barColumn, std::nullopt, value};
+        unit = 0.001;
+        const std::optional<int> column = h.barColumn;
+        commandFor = [id, column](double v) { return SetBarLengthCommand{id, column, std::nullopt, v}; };
         break;
     }
-    case HandleKind::ConnectSource: return; // hover over the targets is all that changes
-    default: return;
+    default: return; // a connect drag changes only what is hovered
     }
     if (value == lastApplied_) return;
-    if (execute(*command, /*merge=*/true)) lastApplied_ = value;
+    if (execute(commandFor(value), /*merge=*/true)) {
+        lastApplied_ = value;
+        return;
+    }
+    clampDragTowards(value, unit, commandFor);
+}
+
+/// A drag past what the design allows stops at the last allowed value on the way (found by
+/// halving, in whole units), and the message names the limit: the refusal of the next unit.
+void Interaction::clampDragTowards(double wanted, double unit,
+                                   const std::function<Command(double)>& commandFor) {
+    const auto snap = [unit](double v) { return std::round(v / unit) * unit; };
+    double allowed = lastApplied_, refused = wanted;
+    while (std::abs(refused - allowed) > 1.5 * unit) {
+        const double middle = snap((allowed + refused) / 2);
+        if (middle == allowed || middle == refused) break;
+        if (execute(commandFor(middle), /*merge=*/true)) {
+            allowed = middle;
+            lastApplied_ = middle;
+        } else {
+            refused = middle;
+        }
+    }
+    const double next = snap(allowed + (wanted > allowed ? unit : -unit));
+    if (next != wanted && execute(commandFor(next), /*merge=*/true)) // refused: its message stays
+        lastApplied_ = next;
 }
 
 void Interaction::onKey(const KeyPress& key) {

@@ -19,6 +19,7 @@
 #include "interaction/InputEvent.h"
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -100,6 +101,8 @@ class Interaction {
     void onRelease(MouseButton button);
     void onKey(const KeyPress& key);
     void dragHandleTo(double y);
+    void clampDragTowards(double wanted, double unit,
+                          const std::function<Command(double)>& commandFor);
     void clickHandle(const Handle& h);
     void updateHover();
     PieceId pieceAt(double x, double y) const;

@@ -4,6 +4,7 @@
 #include "InteractionTestSupport.h"
 
 #include "commands/Journal.h"
+#include "model/Error.h"
 
 using namespace netsculpt;
 using namespace netsculpt::test;
@@ -179,6 +180,27 @@ TEST_CASE("bar length: a drag down lengthens the bars, a seam moves both partner
     CHECK(s.piece(parts[0]).bar.at(12) == Approx(0.30).margin(1e-12));
     CHECK(s.piece(parts[1]).bar.at(0) == Approx(0.30).margin(1e-12));
     CHECK(s.piece(parts[0]).bar.at(0) == Approx(0.40).margin(1e-12));
+}
+
+TEST_CASE("bar length: a drag past the shortest allowed bar stops there and names the limit",
+          "[interaction]") {
+    Scene scene;
+    Interaction ui(scene.doc, scene.camera);
+    ui.setMode(Mode::BarLength);
+    const std::uint64_t before = scene.doc.hash();
+    dragHandle(ui, ui.handles().front(), -400); // 2 mm per px: 0.8 m shorter, far below zero
+    const double stopped = scene.doc.sculpture().piece(scene.net).bar.at(0);
+    CHECK(stopped < 0.35);                              // it moved ...
+    CHECK(stopped == std::round(stopped * 1000) / 1000); // ... in whole millimetres
+    CHECK(ui.messageIsError());
+    const std::string limit = "bar length " + formatNumber(std::round(stopped * 1000 - 1) / 1000);
+    CHECK_THAT(ui.message(), Catch::Matchers::Contains(limit + " m at row"));
+    // One millimetre shorter is refused: the drag stopped at the limit, not short of it.
+    CHECK_THROWS_AS(scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt,
+                                                          std::round(stopped * 1000 - 1) / 1000}),
+                    UserError);
+    scene.doc.undo(); // one undo step, the search's tries included
+    CHECK(scene.doc.hash() == before);
 }
 
 TEST_CASE("connect: a last row dropped on a rail sphere connects there", "[interaction]") {
