@@ -18,18 +18,32 @@ namespace netsculpt::lua {
 
 namespace {
 
+/// A vector {"x", "y", "z"} of the report.
+bool isVector(const nlohmann::json& value) {
+    if (!value.is_object() || value.size() != 3) return false;
+    for (const char* axis : {"x", "y", "z"})
+        if (!value.contains(axis) || !value[axis].is_number()) return false;
+    return true;
+}
+
 /// Pushes JSON as Lua values: objects become tables with string keys, arrays sequences
-/// (1-based), integers integers, null nil.
+/// (1-based), integers integers, null nil. A vector is both: v.x, v.y, v.z and v[1], v[2], v[3]
+/// (as r:point(t) and p:knots() give points).
 void pushJson(lua_State* L, const nlohmann::json& value) {
     if (!lua_checkstack(L, 3))
         throw std::runtime_error("the report is nested too deeply");
     switch (value.type()) {
     case nlohmann::json::value_t::object:
-        lua_createtable(L, 0, int(value.size()));
+        lua_createtable(L, isVector(value) ? 3 : 0, int(value.size()));
         for (const auto& [key, item] : value.items()) {
             pushJson(L, item);
             lua_setfield(L, -2, key.c_str());
         }
+        if (isVector(value))
+            for (lua_Integer i = 1; const char* axis : {"x", "y", "z"}) {
+                lua_pushnumber(L, value[axis].get<double>());
+                lua_rawseti(L, -2, i++);
+            }
         break;
     case nlohmann::json::value_t::array: {
         lua_createtable(L, int(value.size()), 0);

@@ -278,6 +278,10 @@ T.case("relax, export, report, save and open", function()
   end
   T.eq(rows, 1 + 24)
   T.near(fz, report.rails[1].reaction.z, 1e-9)
+  local reaction = report.rails[1].reaction -- a vector by name and by index
+  T.eq(#reaction, 3)
+  T.eq(reaction[1], reaction.x)
+  T.eq(reaction[3], reaction.z)
   T.raises(function() doc:write_report("api/r.md", {table = "attachments"}) end,
            "write_report: argument 'table' is for a .csv report")
   T.raises(function() doc:write_report("api/r.csv", {table = "bars"}) end,
