@@ -78,11 +78,33 @@ void pushJson(lua_State* L, const nlohmann::json& value) {
 const std::vector<std::string> kColourBy = {"piece", "tension"};
 const std::vector<std::string> kViews = {"top", "side", "front", "perspective", "all"};
 
-ExportOptions exportArgs(const Call& call) {
+/// The export options each format uses; others given are refused, not ignored.
+std::vector<std::string> optionsOf(const std::string& ext) {
+    if (ext == "obj" || ext == "ply") return {"tube_radius"};
+    if (ext == "glb") return {"tube_radius", "colour_by"};
+    if (ext == "svg" || ext == "png") return {"colour_by", "width", "height", "view"};
+    return {};
+}
+
+void checkOptionsFor(const Call& call, const TableArgs& args, const std::string& ext) {
+    const std::vector<std::string> used = optionsOf(ext);
+    for (const char* key : {"colour_by", "tube_radius", "width", "height", "view"}) {
+        if (!args.has(key) || std::find(used.begin(), used.end(), key) != used.end())
+            continue;
+        std::string takes;
+        for (const std::string& option : used)
+            takes += (takes.empty() ? "" : ", ") + option;
+        call.fail("argument '" + std::string(key) + "' does not apply to a ." + ext + " export (" +
+                  (takes.empty() ? "it takes no options" : "it takes " + takes) + ")");
+    }
+}
+
+ExportOptions exportArgs(const Call& call, const std::string& ext) {
     ExportOptions o;
     if (lua_isnoneornil(call.L, 3))
         return o;
     const TableArgs args(call, 3, {"colour_by", "tube_radius", "width", "height", "view"});
+    checkOptionsFor(call, args, ext);
     o.colourBy = args.choice("colour_by", kColourBy, o.colourBy);
     if (args.has("tube_radius")) {
         o.tubeRadius = args.finite("tube_radius", std::nullopt);
@@ -111,7 +133,6 @@ std::string extensionOf(const std::filesystem::path& path) {
 int w_export(Call& call) {
     const Document& doc = checkDocument(call);
     const std::string given = checkString(call, 2, "path");
-    const ExportOptions options = exportArgs(call);
     const std::vector<std::string> formats = exportFormats();
     const std::string ext = extensionOf(given);
     if (std::find(formats.begin(), formats.end(), ext) == formats.end()) {
@@ -121,6 +142,7 @@ int w_export(Call& call) {
         call.fail("argument 'path' must end in one of " + allowed + " (the format), got \"" +
                   given + "\"");
     }
+    const ExportOptions options = exportArgs(call, ext);
     const auto path = resolveWritePath(context(call.L), given, call.name);
     exportFile(doc, path, options);
     lua_pushstring(call.L, path.c_str());

@@ -97,6 +97,11 @@ T.case("enums list the valid values", function()
   fails(here(), function() doc:export("x.png", {view = "back"}) end,
         "export: argument 'view' must be one of \"top\", \"side\", \"front\", \"perspective\" or \"all\"")
   fails(here(), function() doc:export("x.docx") end, "export: argument 'path' must end in one of .csv")
+  -- An option the format does not use is refused, not ignored.
+  fails(here(), function() doc:export("x.csv", {width = 100}) end,
+        "export: argument 'width' does not apply to a .csv export (it takes no options)")
+  fails(here(), function() doc:export("x.obj", {view = "top"}) end,
+        "export: argument 'view' does not apply to a .obj export (it takes tube_radius)")
 end)
 
 T.case("handles of the wrong kind or removed", function()
