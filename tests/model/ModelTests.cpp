@@ -288,6 +288,14 @@ TEST_CASE("bar length at a seam is shared and interpolated across each piece") {
     CHECK(s.piece(b).bar.at(4) == 0.5);
 }
 
+TEST_CASE("numbers in messages read back to the same double, and a NaN reads nan") {
+    CHECK(formatNumber(0.1) == "0.1");
+    CHECK(std::stod(formatNumber(1.0 / 3)) == 1.0 / 3);
+    CHECK(formatNumber(-std::nan("")) == "nan"); // not "-nan", which reads as a number
+    CHECK(formatNumber(std::nan("")) == "nan");
+    CHECK(formatNumber(-1e300 * 1e300) == "-inf");
+}
+
 TEST_CASE("bad input is refused with a clear message and changes nothing") {
     Tube t = tube(12, 4);
     const Sculpture before = t.s;

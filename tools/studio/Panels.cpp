@@ -291,7 +291,9 @@ void Panels::drawDialogs(App& app) {
         ImGui::Text("%s", actionTitle(action));
         if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
         ImGui::SetNextItemWidth(460);
-        const bool enter = ImGui::InputText("##path", &path_, ImGuiInputTextFlags_EnterReturnsTrue);
+        const bool enter = ImGui::InputText("##path", &path_,
+                                              ImGuiInputTextFlags_EnterReturnsTrue |
+                                                  ImGuiInputTextFlags_AutoSelectAll);
         if ((ImGui::Button("OK") || enter) && !path_.empty()) {
             ImGui::CloseCurrentPopup();
             askPath_.reset();
