@@ -1,6 +1,7 @@
 #include "commands/Journal.h"
 
 #include "commands/JsonCodec.h"
+#include "commands/TemporaryFiles.h"
 #include "model/Error.h"
 
 #include <array>
@@ -218,8 +219,8 @@ JournalContents readJournal(const std::filesystem::path& path) {
 }
 
 void writeFileDurably(const std::filesystem::path& path, std::string_view content) {
-    std::filesystem::path temp = path;
-    temp += ".tmp-" + std::to_string(::getpid());
+    removeStaleTemporaries(path);
+    const std::filesystem::path temp = temporaryBeside(path);
     const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd < 0) throw UserError(systemError("create", temp, errno));
     std::size_t done = 0;

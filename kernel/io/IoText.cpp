@@ -1,8 +1,8 @@
 #include "io/IoText.h"
 
+#include "commands/TemporaryFiles.h"
 #include "model/Error.h"
 
-#include <atomic>
 #include <cerrno>
 #include <charconv>
 #include <cstdio>
@@ -148,18 +148,12 @@ std::string osReason() {
     return std::strerror(errno);
 }
 
-/// A name beside `path` that no other writer of this process uses at the same time.
-std::filesystem::path temporaryBeside(const std::filesystem::path& path) {
-    static std::atomic<unsigned> counter{0};
-    std::filesystem::path tmp = path;
-    tmp += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-    return tmp;
-}
 
 } // namespace
 
 void writeFileAtomically(const std::filesystem::path& path, std::string_view bytes) {
     const std::string name = displayName(path);
+    removeStaleTemporaries(path);
     const std::filesystem::path tmp = temporaryBeside(path);
     const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd < 0)

@@ -114,3 +114,29 @@ TEST_CASE("a journal writer killed at random moments loses nothing it acknowledg
     WARN("recovered " << recoveredBefore << " entries over 20 kills; " << tornTails << " torn tails, "
                       << unacknowledgedKept << " synced-but-unacknowledged entries kept");
 }
+
+TEST_CASE("a temporary file a killed writer left beside a file goes at its next write", "[crash]") {
+    TempDir dir;
+    const pid_t child = fork(); // a writer that is gone by the time of the next write
+    if (child == 0)
+        _exit(0);
+    REQUIRE(child > 0);
+    waitpid(child, nullptr, 0);
+    const auto leftover = [&](const std::string& file, pid_t pid) {
+        const std::filesystem::path path = dir / (file + ".tmp-" + std::to_string(pid) + "-3");
+        writeBytes(path, "netsculpt-snapshot 2\n{\"cut off");
+        return path;
+    };
+    const auto deadJournal = leftover("j.netj", child);
+    const auto deadSnapshot = leftover("s.nets", child);
+    const auto deadOther = leftover("other.netj", child); // beside another file: not this write's
+    const auto alive = leftover("j.netj", getppid());      // a writer that still runs
+    Document doc = fixtureDocument();
+    doc.save(dir / "j.netj");
+    doc.saveSnapshot(dir / "s.nets");
+    CHECK_FALSE(std::filesystem::exists(deadJournal));
+    CHECK_FALSE(std::filesystem::exists(deadSnapshot));
+    CHECK(std::filesystem::exists(deadOther));
+    CHECK(std::filesystem::exists(alive));
+    CHECK(Document::open(dir / "j.netj").hash() == doc.hash());
+}
