@@ -131,6 +131,22 @@ JournalEntry decodeEntryJson(std::string_view text) {
     return codec::decodeEntryObject(codec::parseJson(text));
 }
 
+namespace {
+
+/// What a garbled last line held: one entry, or the text of several when a line end between
+/// them was damaged (each entry has one "seq").
+std::string garbledLastLine(std::string_view body) {
+    std::size_t entries = 0;
+    for (std::size_t at = body.find("\"seq\":"); at != std::string_view::npos;
+         at = body.find("\"seq\":", at + 1))
+        ++entries;
+    if (entries <= 1) return "a garbled last entry";
+    return "a garbled last line holding the text of " + std::to_string(entries) +
+           " entries (a damaged line end joined them; all " + std::to_string(entries) + " are lost)";
+}
+
+} // namespace
+
 JournalContents parseJournal(std::string_view text, const std::string& name) {
     JournalContents out;
     // A line may end in "\r\n" (a journal checked out with Windows line endings): the "\r" is
@@ -186,7 +202,8 @@ JournalContents parseJournal(std::string_view text, const std::string& name) {
             object = codec::parseJson(checkedJson(body));
         } catch (const UserError& e) {
             if (last) {
-                out.warnings.push_back(where + ": dropped a garbled last entry (" + e.what() + ")");
+                out.warnings.push_back(where + ": dropped " + garbledLastLine(body) + " (" +
+                                       e.what() + ")");
                 break;
             }
             throw UserError(where + ": " + e.what() + "; the journal is damaged before its last entry");

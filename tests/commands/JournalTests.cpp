@@ -222,6 +222,18 @@ TEST_CASE("a garbled last entry is dropped; a garbled entry elsewhere is an erro
         CHECK_THAT(warnings[0], Contains("line 13") && Contains("JSON"));
         CHECK(entriesOf(path).size() == 11);
     }
+    SECTION("a damaged line end before the last line: both entries dropped, and the warning "
+            "says two") {
+        auto edited = lines;
+        edited[11] += "\v" + edited[12];
+        edited.pop_back();
+        writeBytes(path, joinLines(edited));
+        std::vector<std::string> warnings;
+        Document doc = Document::open(path, &warnings);
+        REQUIRE(warnings.size() == 1);
+        CHECK_THAT(warnings[0], Contains("line 12") && Contains("the text of 2 entries"));
+        CHECK(entriesOf(path).size() == 10);
+    }
     SECTION("bad JSON elsewhere, even if re-signed, is an error") {
         auto edited = lines;
         edited[6] = resign(edited[6].substr(0, edited[6].size() - 1));
