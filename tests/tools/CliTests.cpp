@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <fstream>
 
 using namespace netsculpt::test;
@@ -129,6 +130,18 @@ TEST_CASE("run: exit code 0 with outputs and a journal, 1 with a one-line messag
     CHECK(stopped.exitCode == 1);
     CHECK_THAT(stopped.output,
                Contains("loop.lua:1: script exceeded its budget of 10^6 instructions"));
+
+    // Stuck inside a library call, out of the instruction budget's reach: the time limit ends it.
+    const fs::path stuck = writeScript(
+        dir, "stuck.lua", "string.find(string.rep('a', 60), string.rep('a*', 8) .. 'b')\n");
+    const auto started = std::chrono::steady_clock::now();
+    const Ran late = runCli("run " + quoted(stuck) + " --out " + quoted(dir / "out") +
+                            " --max-seconds 0.5");
+    const double took =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    CHECK(late.exitCode == 1);
+    CHECK_THAT(late.output, Contains("stuck.lua ran past its time limit of 0.5 s (--max-seconds)"));
+    CHECK(took < 20);
 
     const fs::path hungry =
         writeScript(dir, "hungry.lua", "local t = {} for i = 1, 1e9 do t[i] = i end\n");

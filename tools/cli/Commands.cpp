@@ -1,4 +1,5 @@
 #include "Commands.h"
+#include "Watchdog.h"
 
 #include "io/Export.h"
 #include "io/Report.h"
@@ -105,6 +106,8 @@ int runScript(const RunArgs& a, Verbosity verbosity) {
     ProgressLine progress(verbosity);
     const lua::ScriptOptions options = scriptOptions(a, out, progress);
     const auto start = std::chrono::steady_clock::now();
+    const Watchdog watchdog(a.maxSeconds, a.script.string() + " ran past its time limit of " +
+                                              formatNumber(a.maxSeconds) + " s (--max-seconds)");
     const lua::ScriptResult result = lua::runScriptFile(a.script, options);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

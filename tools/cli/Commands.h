@@ -18,6 +18,7 @@ struct RunArgs {
     bool unsafe = false;
     double maxMemoryMiB = 512;    ///< 0 = no limit
     double maxInstructions = 1e9; ///< 0 = no budget
+    double maxSeconds = 0;        ///< wall-clock limit of the whole run, s; 0 = none
     std::string backend;          ///< overrides every doc:relax; empty = the script's
     bool journal = true;
 };

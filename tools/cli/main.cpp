@@ -75,6 +75,11 @@ void addRun(CLI::App& app, Options& o) {
                     "Output folder: where doc:save/doc:export write and the journal goes "
                     "(default: out/<script name>)");
     run->add_flag("--unsafe", o.run.unsafe, "Lift the sandbox (file, process and C module access)");
+    run->add_option("--max-seconds", o.run.maxSeconds,
+                    "Wall-clock limit of the run, s (0 = none): the script is stopped when it "
+                    "is up, whatever it is doing")
+        ->capture_default_str()
+        ->check(numberAbove(true));
     run->add_option("--max-memory", o.run.maxMemoryMiB,
                     "Memory limit of the script's Lua state, MiB (0 = none)")
         ->capture_default_str()

@@ -1,0 +1,33 @@
+#include "Watchdog.h"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+
+namespace netsculpt::cli {
+
+Watchdog::Watchdog(double seconds, std::string message) {
+    if (!(seconds > 0))
+        return;
+    thread_ = std::thread([this, seconds, message = std::move(message)] {
+        std::unique_lock lock(mutex_);
+        if (wake_.wait_for(lock, std::chrono::duration<double>(seconds), [this] { return done_; }))
+            return;
+        std::fprintf(stderr, "netsculpt: error: %s\n", message.c_str());
+        std::fflush(stderr);
+        std::_Exit(1);
+    });
+}
+
+Watchdog::~Watchdog() {
+    if (!thread_.joinable())
+        return;
+    {
+        std::lock_guard lock(mutex_);
+        done_ = true;
+    }
+    wake_.notify_one();
+    thread_.join();
+}
+
+} // namespace netsculpt::cli
