@@ -71,8 +71,9 @@ class App {
     /// What the forces of a report are: the relaxed shape's at the material's stiffness, a
     /// preview shape's at the preview's stiffness, or a shape's that is neither.
     enum class ReportBasis { Relaxed, Preview, NotRelaxed };
-    /// The report of the current shape: recomputed at most twice a second while things change, at
-    /// once when the relaxation of the current version has ended (its settled shape's forces).
+    /// The report of the current shape: recomputed at once after an edit (but twice a second
+    /// while a drag goes on) and when the relaxation of the current version has ended (its
+    /// settled shape's forces), else at most twice a second while the shape moves.
     const nlohmann::json* report();
     /// The basis of the last report() and, for a preview, its stiffness scale.
     ReportBasis reportBasis() const { return reportBasis_; }
@@ -153,6 +154,7 @@ class App {
     nlohmann::json report_;
     bool reportValid_ = false;
     bool reportDirty_ = true;
+    std::uint64_t reportVersion_ = 0; ///< the interaction's version the report was made for
     std::chrono::steady_clock::time_point reportTime_{};
     ReportBasis reportBasis_ = ReportBasis::NotRelaxed;
     double reportPreviewScale_ = 1;

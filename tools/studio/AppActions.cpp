@@ -237,9 +237,13 @@ const nlohmann::json* App::report() {
     const bool current = liveState_ && liveState_->generation == interaction_->version();
     // The run for the shape shown has ended: its last shape's report is due now.
     const bool settled = current && !liveState_->running;
-    if (reportDirty_ && (settled || now - reportTime_ > std::chrono::milliseconds(500))) {
+    // An edit's counts and lengths are due at once, unless a drag goes on (then twice a second).
+    const bool edited = reportVersion_ != interaction_->version() && !interaction_->gestureActive();
+    if ((reportDirty_ || edited) &&
+        (settled || edited || now - reportTime_ > std::chrono::milliseconds(500))) {
         reportDirty_ = false;
         reportTime_ = now;
+        reportVersion_ = interaction_->version();
         try {
             const double preview = previewScaleShown();
             report_ = preview < 1 ? previewReport() : buildReport(*doc_);
