@@ -25,6 +25,7 @@ struct ScriptContext {
     bool sandboxed = false;          ///< the sandbox rules of Sandbox.h apply
     std::filesystem::path scriptDir; ///< absolute; relative reads resolve here
     std::filesystem::path outputDir; ///< absolute; relative writes resolve here
+    std::vector<std::filesystem::path> libraryDirs; ///< absolute; modules and reads only
 
     /// Documents made by ns.new / ns.open are journaled to outputDir/<journalStem>.netj (the
     /// second one to <journalStem>.2.netj, ...). Empty = not journaled.

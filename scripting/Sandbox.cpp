@@ -49,6 +49,12 @@ void checkFileName(const std::string& text, const char* call) {
 
 } // namespace
 
+std::vector<fs::path> readableFolders(const ScriptContext& context) {
+    std::vector<fs::path> folders = {context.scriptDir, context.outputDir};
+    folders.insert(folders.end(), context.libraryDirs.begin(), context.libraryDirs.end());
+    return folders;
+}
+
 fs::path resolveReadPath(const ScriptContext& context, const std::string& text, const char* call) {
     checkFileName(text, call);
     const fs::path given(text);
@@ -60,13 +66,14 @@ fs::path resolveReadPath(const ScriptContext& context, const std::string& text, 
     if (!context.sandboxed)
         return full;
     const fs::path resolved = canonicalOrSelf(full);
-    if (isInside(resolved, canonicalOrSelf(context.scriptDir)) ||
-        isInside(resolved, canonicalOrSelf(context.outputDir)))
-        return resolved;
+    for (const fs::path& folder : readableFolders(context))
+        if (isInside(resolved, canonicalOrSelf(folder)))
+            return resolved;
     throw UserError(std::string(call) + ": reading \"" + text +
                     "\" is not allowed: a script reads files only in its own folder (" +
-                    context.scriptDir.string() + ") and in the output folder (" +
-                    context.outputDir.string() + "); " + kUnsafeHint);
+                    context.scriptDir.string() + "), in the output folder (" +
+                    context.outputDir.string() + ") and in the folders given with --lib; " +
+                    kUnsafeHint);
 }
 
 fs::path resolveWritePath(const ScriptContext& context, const std::string& text, const char* call) {
@@ -234,7 +241,7 @@ int searchModule(Call& call) {
     std::replace(relative.begin(), relative.end(), '.', '/');
     const ScriptContext& ctx = context(L);
     std::string tried;
-    for (const fs::path& folder : {ctx.scriptDir, ctx.outputDir})
+    for (const fs::path& folder : readableFolders(ctx))
         for (const std::string& file : {relative + ".lua", relative + "/init.lua"}) {
             const fs::path path = folder / file;
             std::error_code error;
@@ -249,8 +256,9 @@ int searchModule(Call& call) {
             lua_pushstring(L, path.c_str());
             return 2;
         }
-    tried += "\n\t(a script loads Lua modules from its own folder and the output folder only; "
-             "C modules other than netsculpt are not allowed; " +
+    tried += "\n\t(a script loads Lua modules from its own folder, the output folder and the "
+             "folders given with --lib (module names use dots: require \"lib.helpers\"); C "
+             "modules other than netsculpt are not allowed; " +
              std::string(kUnsafeHint) + ")";
     lua_pushstring(L, tried.c_str());
     return 1;

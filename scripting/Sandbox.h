@@ -19,9 +19,13 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace netsculpt::lua {
 
+/// Where a sandboxed script may read and find modules: its own folder, the output folder and the
+/// library folders (--lib), in that order.
+std::vector<std::filesystem::path> readableFolders(const ScriptContext& context);
 /// The file a script may read at `path` (as given by the script), for the call `call`.
 /// Throws UserError saying which folders are allowed when the sandbox refuses it.
 std::filesystem::path resolveReadPath(const ScriptContext& context, const std::string& path,

@@ -68,6 +68,8 @@ ScriptContext makeContext(const fs::path& scriptDir, const std::string& journalS
     ctx.sandboxed = !options.unsafe;
     ctx.scriptDir = fs::weakly_canonical(fs::absolute(scriptDir), error);
     ctx.outputDir = fs::weakly_canonical(fs::absolute(options.outputDir), error);
+    for (const fs::path& folder : options.libraryDirs)
+        ctx.libraryDirs.push_back(fs::weakly_canonical(fs::absolute(folder), error));
     ctx.journalStem = options.journal ? journalStem : std::string();
     ctx.backendOverride = options.backend;
     ctx.relaxProgress = options.relaxProgress;

@@ -21,6 +21,9 @@ struct ScriptOptions {
     std::filesystem::path outputDir = ".";
     /// Lift the sandbox (Sandbox.h). The limits stay.
     bool unsafe = false;
+    /// Folders of shared Lua modules (a studio's helpers): `require` finds modules there and the
+    /// script may read in them, after its own folder and the output folder. Each must exist.
+    std::vector<std::filesystem::path> libraryDirs;
     std::size_t maxMemory = std::size_t(512) << 20; ///< bytes the Lua state may hold; 0 = no limit
     std::uint64_t maxInstructions = 1'000'000'000;  ///< VM instructions; 0 = no budget
     /// Relax every doc:relax with this backend, overriding the script's choice. Empty = the

@@ -129,6 +129,33 @@ TEST_CASE("A script reads only in its own folder and the output folder", "[sandb
     }
 }
 
+TEST_CASE("A studio's shared modules load from a library folder given to the run", "[sandbox]") {
+    const ScriptFolders f("library");
+    const std::filesystem::path shared = f.root / "studio-lib";
+    f.write(shared / "studio" / "rails.lua",
+            "local M = {}\nfunction M.name() return io.open(M.folder .. '/names.txt'):read('l') end\n"
+            "return M\n");
+    f.write(shared / "studio" / "names.txt", "crown\n");
+    const std::string code = "local rails = require('studio.rails')\n"
+                             "rails.folder = '" + (shared / "studio").string() + "'\n"
+                             "assert(rails.name() == 'crown')\n";
+    const auto without = f.run(code);
+    CHECK_FALSE(without.ok);
+    CHECK_THAT(without.error, Contains("module 'studio.rails' not found") &&
+                                  Contains("the folders given with --lib"));
+    lua::ScriptOptions options = f.options();
+    options.libraryDirs = {shared};
+    const auto with = f.run(code, options);
+    CHECK(with.error == "");
+    CHECK(with.ok);
+    // The library is read-only: nothing is written there.
+    const auto write = f.run("require('netsculpt').new():export('" + (shared / "x.csv").string() +
+                                 "')",
+                             options);
+    CHECK_FALSE(write.ok);
+    CHECK_FALSE(std::filesystem::exists(shared / "x.csv"));
+}
+
 TEST_CASE("The unsafe option lifts the sandbox", "[sandbox]") {
     const ScriptFolders f("unsafe");
     auto o = f.options();

@@ -64,6 +64,7 @@ lua::ScriptOptions scriptOptions(const RunArgs& a, const fs::path& out, Progress
     lua::ScriptOptions o;
     o.outputDir = out;
     o.unsafe = a.unsafe;
+    o.libraryDirs = a.libraries;
     if (!(a.maxMemoryMiB >= 0) || !std::isfinite(a.maxMemoryMiB))
         throw UserError("--max-memory must be a number of MiB >= 0, got " +
                         formatNumber(a.maxMemoryMiB));

@@ -16,6 +16,7 @@ struct RunArgs {
     std::vector<std::string> args;   ///< the script's arguments (arg[1..])
     std::filesystem::path out; ///< the output folder (created when missing); empty: out/<script>
     bool unsafe = false;
+    std::vector<std::filesystem::path> libraries; ///< --lib: folders of shared Lua modules
     double maxMemoryMiB = 512;    ///< 0 = no limit
     double maxInstructions = 1e9; ///< 0 = no budget
     double maxSeconds = 0;        ///< wall-clock limit of the whole run, s; 0 = none

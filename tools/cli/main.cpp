@@ -75,6 +75,9 @@ void addRun(CLI::App& app, Options& o) {
                     "Output folder: where doc:save/doc:export write and the journal goes "
                     "(default: out/<script name>)");
     run->add_flag("--unsafe", o.run.unsafe, "Lift the sandbox (file, process and C module access)");
+    run->add_option("--lib", o.run.libraries,
+                    "A folder of shared Lua modules the script may require and read (repeatable)")
+        ->check(CLI::ExistingDirectory);
     run->add_option("--max-seconds", o.run.maxSeconds,
                     "Wall-clock limit of the run, s (0 = none): the script is stopped when it "
                     "is up, whatever it is doing")
