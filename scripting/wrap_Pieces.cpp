@@ -110,7 +110,8 @@ int w_split(Call& call) {
     Document& doc = checkDocument(call);
     const TableArgs args(call, 2, {"piece", "column"});
     const PieceId piece = pieceArg(args, "piece");
-    const int column = int(args.whole("column", std::nullopt, 1, kMaxColumns));
+    // Any whole column reaches the model, whose message gives this piece's range.
+    const int column = int(args.whole("column", std::nullopt, -kMaxColumns, kMaxColumns));
     const CommandResult created = doc.execute(SplitCommand{piece, column});
     pushPiece(call.L, 1, created.pieces.at(0));
     pushPiece(call.L, 1, created.pieces.at(1));

@@ -24,7 +24,9 @@ T.case("whole numbers", function()
         "set_rows: argument 'rows' must be a whole number", "got 2.5")
   fails(here(), function() doc:set_rows{piece = p, rows = "3"} end, "got \"3\"")
   fails(here(), function() doc:split{piece = p, column = 0} end,
-        "split: argument 'column' must be a whole number from 1 to 1000000, got 0")
+        "split: column must be from 1 to 35 for piece 1", "got 0") -- the piece's own range
+  fails(here(), function() doc:split{piece = p, column = 1.5} end,
+        "split: argument 'column' must be a whole number", "got 1.5")
 end)
 
 T.case("extra arguments", function()
