@@ -392,6 +392,12 @@ CommandResult Document::execute(const Command& command, bool merge) {
 
 bool Document::canUndo() const { return state_->index > 0; }
 bool Document::canRedo() const { return state_->index < state_->steps.size(); }
+std::string Document::undoName() const {
+    return canUndo() ? commandName(state_->steps[state_->index - 1].commands.front()) : "";
+}
+std::string Document::redoName() const {
+    return canRedo() ? commandName(state_->steps[state_->index].commands.front()) : "";
+}
 std::uint64_t Document::birth(PieceId id) const {
     const auto it = state_->pieceBirth.find(id.value);
     return it == state_->pieceBirth.end() ? 0 : it->second;

@@ -54,6 +54,9 @@ class Document {
     bool canRedo() const;
     void undo(); ///< UserError when there is nothing to undo
     void redo(); ///< UserError when there is nothing to redo
+    /// The command undo() (redo()) would take back (bring back): "set_rows", or "" when none.
+    std::string undoName() const;
+    std::string redoName() const;
     /// Tells apart the pieces (rails) that have had an id: an id made again after the step that
     /// made it was undone has another birth, one brought back by redo() the same. A number for
     /// an id of the current sculpture; 0 for one never made.

@@ -101,8 +101,8 @@ bool Interaction::execute(const Command& command, bool merge) {
 
 bool Interaction::undo() {
     if (drag_ == Drag::Handle || !doc_->canUndo()) return false;
+    message_ = "undo " + doc_->undoName();
     doc_->undo();
-    message_ = "undo";
     messageIsError_ = false;
     changed();
     return true;
@@ -110,8 +110,8 @@ bool Interaction::undo() {
 
 bool Interaction::redo() {
     if (drag_ == Drag::Handle || !doc_->canRedo()) return false;
+    message_ = "redo " + doc_->redoName();
     doc_->redo();
-    message_ = "redo";
     messageIsError_ = false;
     changed();
     return true;

@@ -262,8 +262,10 @@ TEST_CASE("keys: ctrl+z undoes, ctrl+shift+z and ctrl+y redo, letters choose mod
     ui.handle(KeyPress{'Z', {false, true, false}});
     CHECK(scene.doc.sculpture().piece(scene.net).rows == 6);
     CHECK(ui.version() > version);
+    CHECK(ui.message() == "undo set_rows"); // what was undone
     ui.handle(KeyPress{'Z', {true, true, false}});
     CHECK(scene.doc.sculpture().piece(scene.net).rows == 8);
+    CHECK(ui.message() == "redo set_rows");
     ui.handle(KeyPress{'Z', {false, true, false}});
     ui.handle(KeyPress{'Y', {false, true, false}});
     CHECK(scene.doc.sculpture().piece(scene.net).rows == 8);
