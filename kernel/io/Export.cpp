@@ -119,9 +119,13 @@ std::string jsonDocument(const ExportInput& in) {
                             {"refs", std::move(refs)}};
         if (sys.fixed[k])
             knot["hold"] = {{"rail", sys.hold[k].rail.value}, {"t", sys.hold[k].t}};
+        if (sys.origin != Vec3{}) // site coordinates: the bits the equilibrium is computed in
+            knot["local"] = vec(sys.position[k]);
         knots.push_back(std::move(knot));
     }
     doc["knots"] = std::move(knots);
+    if (sys.origin != Vec3{})
+        doc["origin"] = vec(sys.origin);
     const std::vector<double> tension = sys.barCount() ? barTensions(sys) : std::vector<double>{};
     nlohmann::json bars = nlohmann::json::array();
     for (std::size_t b = 0; b < sys.barCount(); ++b)

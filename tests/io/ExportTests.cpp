@@ -124,6 +124,20 @@ TEST_CASE("exports in site coordinates: the CSV in the sculpture's, the glb's fl
     }
     CHECK(worst < 1e-8); // the same net, moved to the site (rounded there to 9.3e-10 m)
 
+    // The JSON document carries the origin and each knot's place from it, every bit of it.
+    exportFile(far.s, far.compiled, {}, dir / "net.json");
+    const auto doc = nlohmann::json::parse(readText(dir / "net.json"));
+    CHECK(doc.at("origin") == nlohmann::json::array({512346.0, 5412346.0, 235.0}));
+    for (std::size_t k = 0; k < sys.knotCount(); ++k) {
+        const auto& local = doc.at("knots").at(k).at("local");
+        CHECK(Vec3{local.at(0), local.at(1), local.at(2)} == sys.position[k]);
+    }
+    const Tube home = tubeWithChild();
+    exportFile(home.s, home.compiled, {}, dir / "home.json");
+    const auto atHome = nlohmann::json::parse(readText(dir / "home.json"));
+    CHECK_FALSE(atHome.contains("origin")); // about (0, 0, 0) the positions are the local ones
+    CHECK_FALSE(atHome.at("knots").at(0).contains("local"));
+
     exportFile(far.s, far.compiled, {}, dir / "net.glb");
     tinygltf::Model model;
     tinygltf::TinyGLTF loader;
