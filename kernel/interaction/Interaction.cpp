@@ -26,6 +26,13 @@ std::vector<Gear> gearLadder(const Sculpture& s, const Piece& p) {
     return ladder;
 }
 
+/// A piece whose top row hangs from `rail`, or none.
+PieceId pieceOnRail(const Sculpture& s, RailId rail) {
+    for (const auto& [id, piece] : s.pieces)
+        if (piece.onRail() && piece.railTop().rail == rail) return id;
+    return PieceId{};
+}
+
 /// Whole pixels of drag turned into whole steps, towards zero (a 7 px drag at 8 px/row is 0 rows).
 /// (The small allowance keeps an exact multiple that arrives as 71.99999... px a whole step.)
 int steps(double pixels, double pixelsPerStep) {
@@ -223,7 +230,12 @@ void Interaction::clickHandle(const Handle& h) {
         args.columns = defaultColumns(curve.length(), curve.closed(), settings_.newPieceSpacingRatio * args.bar,
                                       settings_.newPieceMaxColumns);
         args.at = curve.closed() ? h.t : 0; // a piece on an open rail spans it from its start
-        if (execute(AttachToRailCommand{args})) selected_ = lastCreated_.pieces.front();
+        const PieceId already = pieceOnRail(s, h.rail);
+        if (!execute(AttachToRailCommand{args})) break;
+        selected_ = lastCreated_.pieces.front();
+        if (already)
+            message_ = "attach_to_rail: " + toString(h.rail) + " already holds " + toString(already) +
+                       "; the new piece hangs over it (Ctrl+Z takes it back)";
         break;
     }
     case HandleKind::LastRow: {

@@ -40,6 +40,9 @@ TEST_CASE("new net: a click on the third rail sphere hangs a default piece from 
     CHECK(p.rows == 10);
     CHECK(p.bar.at(0) == 0.25);
     CHECK(ui.selectedPiece() == p.id);
+    // The crown already held the scene's net: the new piece hangs over it, and the status says so.
+    CHECK_THAT(ui.message(), Catch::Matchers::Contains(toString(scene.crown) + " already holds " +
+                                                       toString(scene.net)));
 
     scene.doc.undo(); // one command, one undo step
     CHECK(scene.doc.hash() == before);
@@ -56,6 +59,7 @@ TEST_CASE("new net: a click on an open rail spans it, a click on a last row hang
     CHECK(sheet.railTop().at == 0);
     CHECK(sheet.columns == 2 / 0.25 + 1);
     CHECK_FALSE(sheet.closed);
+    CHECK(ui.message() == "attach_to_rail"); // a free rail: nothing to warn of
 
     clickHandle(ui, findHandle(ui, [&](const Handle& h) { return h.kind == HandleKind::LastRow && h.piece == scene.net; }));
     const Piece& child = scene.doc.sculpture().pieces.rbegin()->second;
