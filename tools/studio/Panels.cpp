@@ -217,9 +217,38 @@ void Panels::drawSolver(App& app) {
         if (ImGui::Button("Refine")) app.refine();
         ImGui::SameLine();
         ImGui::TextDisabled("%.0f fps", app.framesPerSecond());
-        if (app.colourBy() == ColourBy::Tension) ImGui::Text("tension colours: 0 .. %.4g N", app.maxTension());
+        if (app.colourBy() == ColourBy::Tension) drawTensionScale(app.maxTension());
     }
     ImGui::End();
+}
+
+/// The bars' tension colours as a scale: slack (grey), then 0 to the largest tension.
+void Panels::drawTensionScale(double maxTension) {
+    const auto colour = [](const std::array<float, 3>& c) {
+        return ImGui::GetColorU32(ImVec4(c[0], c[1], c[2], 1));
+    };
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    const ImVec2 at = ImGui::GetCursorScreenPos();
+    const float height = 12, slack = 44, width = kRightWidth - 20 - slack - 6;
+    draw->AddRectFilled(at, ImVec2(at.x + slack, at.y + height), colour(tensionColour(0, 1)));
+    constexpr int kSteps = 24;
+    for (int i = 0; i < kSteps; ++i) {
+        const float x0 = at.x + slack + 6 + width * float(i) / kSteps;
+        const float x1 = at.x + slack + 6 + width * float(i + 1) / kSteps;
+        const ImU32 left = colour(tensionColour(double(i) / kSteps + 1e-9, 1));
+        const ImU32 right = colour(tensionColour(double(i + 1) / kSteps, 1));
+        draw->AddRectFilledMultiColor(ImVec2(x0, at.y), ImVec2(x1, at.y + height), left, right, right,
+                                      left);
+    }
+    ImGui::Dummy(ImVec2(kRightWidth - 20, height));
+    const float left = ImGui::GetCursorPosX();
+    ImGui::TextDisabled("slack");
+    ImGui::SameLine(left + slack + 6);
+    ImGui::TextDisabled("0 N");
+    char largest[48];
+    std::snprintf(largest, sizeof largest, "%.4g N (largest)", maxTension);
+    ImGui::SameLine(left + slack + 6 + width - ImGui::CalcTextSize(largest).x);
+    ImGui::TextDisabled("%s", largest);
 }
 
 void Panels::drawStatus(App& app) {

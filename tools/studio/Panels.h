@@ -37,6 +37,7 @@ class Panels {
     void drawReport(App& app);
     void drawSolver(App& app);
     void drawStatus(App& app);
+    void drawTensionScale(double maxTension);
     void drawDialogs(App& app);
     void perform(FileAction action, App& app);
     void performWithPath(FileAction action, App& app, const std::string& path);

@@ -85,6 +85,8 @@ std::uint32_t colourKey(const std::array<float, 3>& c) {
     return level(c[0]) << 12 | level(c[1]) << 6 | level(c[2]);
 }
 
+} // namespace
+
 /// Tension colour ramp: blue (low) - teal - yellow - red (the largest); slack bars grey.
 std::array<float, 3> tensionColour(double tension, double maxTension) {
     if (!(tension > 0) || !(maxTension > 0)) return {0.42f, 0.44f, 0.50f};
@@ -95,8 +97,6 @@ std::array<float, 3> tensionColour(double tension, double maxTension) {
     return {stops[i][0] + (stops[i + 1][0] - stops[i][0]) * f, stops[i][1] + (stops[i + 1][1] - stops[i][1]) * f,
             stops[i][2] + (stops[i + 1][2] - stops[i][2]) * f};
 }
-
-} // namespace
 
 Renderer::~Renderer() {
     const GLuint programs[] = {linesProgram_, thickProgram_, sphereProgram_, backgroundProgram_};

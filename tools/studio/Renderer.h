@@ -20,6 +20,9 @@ namespace netsculpt::studio {
 
 enum class ColourBy { Piece, Tension };
 
+/// Tension colour ramp: blue (low) - teal - yellow - red (the largest); slack bars grey.
+std::array<float, 3> tensionColour(double tension, double maxTension);
+
 /// One sphere to draw: centre (m), radius (m), colour (RGBA in [0, 1]).
 struct Sphere {
     Vec3 centre;
