@@ -10,8 +10,9 @@ namespace netsculpt {
 /// `path.tmp-<pid>-<n>`: a name beside `path` no other writer uses at the same time.
 std::filesystem::path temporaryBeside(const std::filesystem::path& path);
 
-/// Removes the `path.tmp-<pid>-<n>` files beside `path` whose process no longer runs. Never
-/// throws: a temporary it cannot remove stays.
+/// Removes the files beside `path` named exactly `path.tmp-<pid>-<n>` (or `path.tmp-<pid>`,
+/// as older writers named them) that this user's process <pid>, no longer running, left at
+/// least ten minutes ago. Never throws: a temporary it cannot remove stays.
 void removeStaleTemporaries(const std::filesystem::path& path);
 
 } // namespace netsculpt

@@ -122,21 +122,33 @@ TEST_CASE("a temporary file a killed writer left beside a file goes at its next 
         _exit(0);
     REQUIRE(child > 0);
     waitpid(child, nullptr, 0);
-    const auto leftover = [&](const std::string& file, pid_t pid) {
-        const std::filesystem::path path = dir / (file + ".tmp-" + std::to_string(pid) + "-3");
+    const auto leftover = [&](const std::string& name, bool old = true) {
+        const std::filesystem::path path = dir / name;
         writeBytes(path, "netsculpt-snapshot 2\n{\"cut off");
+        if (old) // left an hour ago: younger ones may be another host's writer at work
+            std::filesystem::last_write_time(
+                path, std::filesystem::file_time_type::clock::now() - std::chrono::hours(1));
         return path;
     };
-    const auto deadJournal = leftover("j.netj", child);
-    const auto deadSnapshot = leftover("s.nets", child);
-    const auto deadOther = leftover("other.netj", child); // beside another file: not this write's
-    const auto alive = leftover("j.netj", getppid());      // a writer that still runs
+    const std::string dead = std::to_string(child);
+    const auto deadJournal = leftover("j.netj.tmp-" + dead + "-3");
+    const auto deadSnapshot = leftover("s.nets.tmp-" + dead); // as older writers named them
+    const std::vector<std::filesystem::path> kept = {
+        leftover("other.netj.tmp-" + dead + "-3"),       // beside another file
+        leftover("j.netj.tmp-" + std::to_string(getppid()) + "-3"), // a writer that still runs
+        leftover("j.netj.tmp-" + dead + "-4", false),    // too young to be sure
+        leftover("j.netj.tmp-2024-05-13"),               // a user's file named like one
+        leftover("j.netj.tmp-" + dead + "-3.bak"),
+        leftover("j.netj.tmp-99999999-1"),               // no process has such a pid
+    };
     Document doc = fixtureDocument();
     doc.save(dir / "j.netj");
     doc.saveSnapshot(dir / "s.nets");
     CHECK_FALSE(std::filesystem::exists(deadJournal));
     CHECK_FALSE(std::filesystem::exists(deadSnapshot));
-    CHECK(std::filesystem::exists(deadOther));
-    CHECK(std::filesystem::exists(alive));
+    for (const auto& path : kept) {
+        INFO(path.filename());
+        CHECK(std::filesystem::exists(path));
+    }
     CHECK(Document::open(dir / "j.netj").hash() == doc.hash());
 }
