@@ -142,6 +142,11 @@ TEST_CASE("run: exit code 0 with outputs and a journal, 1 with a one-line messag
     CHECK(late.exitCode == 1);
     CHECK_THAT(late.output, Contains("stuck.lua ran past its time limit of 0.5 s (--max-seconds)"));
     CHECK(took < 20);
+    // A limit beyond a century is none (the wait would overflow and end the run at once).
+    const Ran unlimited = runCli("run " + quoted(script) + " --out " + quoted(dir / "out") +
+                                 " --max-seconds 1e10 --quiet");
+    CHECK(unlimited.exitCode == 0);
+    CHECK(printedHash(unlimited.output).size() == 16);
 
     const fs::path hungry =
         writeScript(dir, "hungry.lua", "local t = {} for i = 1, 1e9 do t[i] = i end\n");

@@ -14,7 +14,8 @@ namespace netsculpt::cli {
 
 class Watchdog {
   public:
-    /// After `seconds` (> 0; 0 = no limit, no thread) prints `message` on stderr and exits 1.
+    /// After `seconds` prints `message` on stderr and exits 1. No limit (no thread) for 0 or
+    /// for more than about a century.
     Watchdog(double seconds, std::string message);
     ~Watchdog(); ///< stands the watchdog down
     Watchdog(const Watchdog&) = delete;
