@@ -29,12 +29,22 @@ bool forcesComputable(MassSpringSystem system, const std::vector<Vec3>& position
     return std::isfinite(residual(system));
 }
 
+/// Whether the knots the rails hold are at `positions` where the rails hold them (to a
+/// micrometre: rounding of a moved origin stays far below that).
+bool heldOnRails(const MassSpringSystem& system, const std::vector<Vec3>& positions) {
+    for (std::size_t k = 0; k < system.knotCount(); ++k)
+        if (system.fixed[k] && !(distance(positions[k], system.position[k]) <= 1e-6))
+            return false;
+    return true;
+}
+
 /// Whether a snapshot's relaxed shape at `positions` is still the equilibrium it was saved as:
-/// its residual within twice the saved one (the same bits when the origin is the saved one).
+/// its residual within twice the saved one (the same bits when the origin is the saved one) or
+/// within the default tolerance, which any rounding of a moved origin stays far below.
 bool stillRelaxed(MassSpringSystem system, const std::vector<Vec3>& positions,
                   const SnapshotShape& saved) {
     system.position = positions;
-    return residual(system, saved.wind) <= 2 * *saved.residual + 1e-12;
+    return residual(system, saved.wind) <= std::max(2 * *saved.residual, RelaxOptions{}.tolerance);
 }
 
 /// The shape a state of the history had when the document left it. Only relaxed shapes need
@@ -329,15 +339,20 @@ Document Document::load(const std::filesystem::path& file, std::vector<std::stri
     if (shift != Vec3{})
         for (Vec3& p : positions) p += shift;
     const bool fits = positions.size() == st.compiled.system.knotCount();
-    if (fits && data.shape.relaxed && data.shape.residual &&
-        !stillRelaxed(st.compiled.system, positions, data.shape)) {
-        report({file.string() + ": the saved shape is not the equilibrium it was saved as (the "
-                                "file was edited or damaged); starting from the initial geometry"},
-               warnings);
-    } else if (fits && !forcesComputable(st.compiled.system, positions)) {
+    if (fits && !forcesComputable(st.compiled.system, positions)) {
         report({file.string() + ": the saved shape's knots are too far apart for the forces "
                                 "between them to be computed (a coordinate beyond about 1e150 m); "
                                 "starting from the initial geometry"},
+               warnings);
+    } else if (fits && !heldOnRails(st.compiled.system, positions)) {
+        report({file.string() + ": the saved shape's knots held by rails are not where the rails "
+                                "hold them (the file was edited or damaged); starting from the "
+                                "initial geometry"},
+               warnings);
+    } else if (fits && data.shape.relaxed && data.shape.residual &&
+               !stillRelaxed(st.compiled.system, positions, data.shape)) {
+        report({file.string() + ": the saved shape is not the equilibrium it was saved as (the "
+                                "file was edited or damaged); starting from the initial geometry"},
                warnings);
     } else if (fits) {
         st.compiled.system.position = std::move(positions);

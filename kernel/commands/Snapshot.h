@@ -1,6 +1,6 @@
 #pragma once
 // Internal to kernel/commands: the snapshot file (Document::saveSnapshot). Line 1 is the header
-// "netsculpt-snapshot 2"; line 2 one JSON object:
+// "netsculpt-snapshot 3"; line 2 one JSON object:
 //   {"hash": "<hashSculpture, 16 hex digits>", "model": {rails, pieces, seams, id counters,
 //    gravity}, "history": [the compacted journal entries that build the model],
 //    "shape": {"warm": bool, "relaxed": bool, "origin": [x, y, z],
@@ -9,7 +9,9 @@
 //              "residual": r (only when relaxed)}}
 // The positions are measured from the origin (MassSpringSystem::origin), so that a shape relaxed
 // in site coordinates is saved to the last bit. Format 1 had no origin: its positions are the
-// sculpture's coordinates (origin (0, 0, 0)), and it is still read.
+// sculpture's coordinates (origin (0, 0, 0)), and it is still read. Format 2 had no "residual";
+// format 3 added it (so that an older netsculpt says the file is newer rather than refusing the
+// key); both are still read.
 // The history lets a loaded snapshot be undone, saved as a journal and turned into Lua; the
 // model and hash make the file self-describing and are checked against the history on load.
 
@@ -25,7 +27,7 @@
 
 namespace netsculpt {
 
-inline constexpr int kSnapshotFormat = 2;
+inline constexpr int kSnapshotFormat = 3;
 inline constexpr std::string_view kSnapshotMagic = "netsculpt-snapshot";
 
 /// Whether a file's text (or its first bytes) is a snapshot's rather than a journal's.

@@ -382,7 +382,7 @@ TEST_CASE("save writes the compacted history; saveSnapshot the model and shape")
         options.solver.maxSteps = 500; // not converged: only the shape matters here
         doc.relax(options);
         doc.saveSnapshot(dir / "snap.nets");
-        CHECK_THAT(readBytes(dir / "snap.nets"), StartsWith("netsculpt-snapshot 2\n"));
+        CHECK_THAT(readBytes(dir / "snap.nets"), StartsWith("netsculpt-snapshot 3\n"));
         std::vector<std::string> warnings;
         Document loaded = Document::load(dir / "snap.nets", &warnings);
         CHECK(warnings.empty());
@@ -394,8 +394,8 @@ TEST_CASE("save writes the compacted history; saveSnapshot the model and shape")
         CHECK(Document::load(dir / "from-snapshot.netj").hash() == hash);
         // a newer snapshot format and an inconsistent one are refused
         std::string bytes = readBytes(dir / "snap.nets");
-        writeBytes(dir / "v3.nets", "netsculpt-snapshot 3" + bytes.substr(bytes.find('\n')));
-        CHECK_THROWS_WITH(Document::load(dir / "v3.nets"), Contains("snapshot format 3 is newer"));
+        writeBytes(dir / "v4.nets", "netsculpt-snapshot 4" + bytes.substr(bytes.find('\n')));
+        CHECK_THROWS_WITH(Document::load(dir / "v4.nets"), Contains("snapshot format 4 is newer"));
         const std::size_t at = bytes.find("\"next_piece_id\":") + 16;
         bytes[at] = bytes[at] == '9' ? '8' : '9';
         writeBytes(dir / "bad.nets", bytes);
@@ -473,36 +473,51 @@ TEST_CASE("a relaxed snapshot whose shape was edited or damaged opens as not rel
     saved.saveSnapshot(dir / "snap.nets");
     const std::string bytes = readBytes(dir / "snap.nets");
     REQUIRE(Document::load(dir / "snap.nets").isRelaxed());
-    const auto damaged = [&](const std::string& key, const std::string& value) {
+    // Replaces number `index` of the array after `"key":[` and loads the file: one warning that
+    // says `why`, the model kept, the shape the initial geometry, not relaxed.
+    const auto damaged = [&](const std::string& key, std::size_t index, double change,
+                             const std::string& why) {
         std::string text = bytes;
-        const std::size_t first = text.find("\"" + key + "\":") + key.size() + 3;
-        const std::size_t end = text.find_first_of(",]}", first + 1);
-        text.replace(first + (text[first] == '['), end - first - (text[first] == '['), value);
+        std::size_t at = text.find("\"" + key + "\":[") + key.size() + 4;
+        for (std::size_t n = 0; n < index; ++n) at = text.find(',', at) + 1;
+        const std::size_t end = text.find_first_of(",]", at);
+        const double value = std::stod(text.substr(at, end - at));
+        text.replace(at, end - at, formatNumber(change == 0 ? 1e308 : value + change));
         writeBytes(dir / "damaged.nets", text);
         std::vector<std::string> warnings;
         const Document loaded = Document::load(dir / "damaged.nets", &warnings);
-        INFO(key << " = " << value);
+        INFO(key << "[" << index << "] + " << change);
         REQUIRE(warnings.size() == 1);
-        CHECK_THAT(warnings[0], Contains("the saved shape is not the equilibrium it was saved as"));
+        CHECK_THAT(warnings[0], Contains(why));
         CHECK_FALSE(loaded.isRelaxed());
         CHECK(loaded.hash() == saved.hash()); // the model and its history are kept
         CHECK(loaded.compiled().system.position == initial);
     };
-    // The third coordinate of a free knot half a metre off (knot 0 hangs on the rail).
-    const std::size_t k = std::size_t(std::find(saved.compiled().system.fixed.begin(),
-                                                saved.compiled().system.fixed.end(), 0) -
-                                      saved.compiled().system.fixed.begin());
-    std::string shifted = bytes;
-    std::size_t at = shifted.find("\"positions\":[") + 13;
-    for (std::size_t n = 0; n < 3 * k + 2; ++n) at = shifted.find(',', at) + 1;
-    const std::size_t end = shifted.find_first_of(",]", at);
-    const double z = std::stod(shifted.substr(at, end - at));
-    shifted.replace(at, end - at, formatNumber(z + 0.5));
-    writeBytes(dir / "shifted.nets", shifted);
+    const auto& fixed = saved.compiled().system.fixed;
+    const std::size_t free = std::size_t(std::find(fixed.begin(), fixed.end(), 0) - fixed.begin());
+    // A free knot half a metre lower: no longer in balance.
+    damaged("positions", 3 * free + 2, -0.5, "not the equilibrium it was saved as");
+    // The origin moved: every knot with it, the held ones off their rails.
+    damaged("origin", 0, 0.5, "knots held by rails are not where the rails hold them");
+    damaged("origin", 0, 0, "knots held by rails are not where the rails hold them"); // 1e308
+}
+
+TEST_CASE("a snapshot relaxed in a wind opens relaxed, with its wind") {
+    TempDir dir;
+    Document doc;
+    addRingWithTube(doc, {0, 0, 0}, 1);
+    DocumentRelaxOptions options;
+    options.solver.maxSeconds = 30;
+    options.solver.wind = Wind{{1, 0, 0}, 0.05};
+    REQUIRE(doc.relax(options).converged);
+    doc.saveSnapshot(dir / "windy.nets");
     std::vector<std::string> warnings;
-    CHECK_FALSE(Document::load(dir / "shifted.nets", &warnings).isRelaxed());
-    CHECK(warnings.size() == 1);
-    damaged("origin", "1e308");
+    const Document loaded = Document::load(dir / "windy.nets", &warnings);
+    CHECK(warnings.empty());
+    CHECK(loaded.isRelaxed());
+    REQUIRE(loaded.shapeWind().has_value());
+    CHECK(loaded.shapeWind()->pressure == 0.05);
+    requireSameSystem(loaded.compiled(), doc.compiled());
 }
 
 TEST_CASE("a journal becomes the equivalent Lua script") {
