@@ -260,7 +260,8 @@ void Interaction::dragHandleTo(double y) {
     const Piece& p = s.piece(h.piece);
     const PieceId id = h.piece;
     std::function<Command(double)> commandFor;
-    double value = lastApplied_, unit = 1;
+    double value = lastApplied_;
+    int perUnit = 1; // values are whole multiples of 1 / perUnit
     switch (h.kind) {
     case HandleKind::RowsEnd:
         value = std::max(1, int(dragStartValue_) + steps(down, settings_.pixelsPerRow));
@@ -280,7 +281,7 @@ void Interaction::dragHandleTo(double y) {
     case HandleKind::BarEnd: { // up = shorter, down = longer; whole millimetres
         const double length = std::round((dragStartValue_ + down * settings_.barMetresPerPixel) * 1000) / 1000;
         value = std::max(0.001, length);
-        unit = 0.001;
+        perUnit = 1000;
         const std::optional<int> column = h.barColumn;
         commandFor = [id, column](double v) { return SetBarLengthCommand{id, column, std::nullopt, v}; };
         break;
@@ -292,28 +293,34 @@ void Interaction::dragHandleTo(double y) {
         lastApplied_ = value;
         return;
     }
-    clampDragTowards(value, unit, commandFor);
+    clampDragTowards(value, perUnit, commandFor);
 }
 
 /// A drag past what the design allows stops at the last allowed value on the way (found by
-/// halving, in whole units), and the message names the limit: the refusal of the next unit.
-void Interaction::clampDragTowards(double wanted, double unit,
+/// halving, in whole units: values are whole multiples of 1 / perUnit), and the message names
+/// the limit: the refusal of the value one unit past it.
+void Interaction::clampDragTowards(double wanted, int perUnit,
                                    const std::function<Command(double)>& commandFor) {
-    const auto snap = [unit](double v) { return std::round(v / unit) * unit; };
-    double allowed = lastApplied_, refused = wanted;
-    while (std::abs(refused - allowed) > 1.5 * unit) {
-        const double middle = snap((allowed + refused) / 2);
-        if (middle == allowed || middle == refused) break;
-        if (execute(commandFor(middle), /*merge=*/true)) {
+    const std::string refusal = message_; // of `wanted`, which was just refused
+    const auto valueOf = [perUnit](long long units) { return double(units) / perUnit; };
+    const long long target = std::llround(wanted * perUnit);
+    long long allowed = std::llround(lastApplied_ * perUnit), refused = target;
+    while (std::llabs(refused - allowed) > 1) {
+        const long long middle = allowed + (refused - allowed) / 2;
+        if (execute(commandFor(valueOf(middle)), /*merge=*/true)) {
             allowed = middle;
-            lastApplied_ = middle;
+            lastApplied_ = valueOf(middle);
         } else {
             refused = middle;
         }
     }
-    const double next = snap(allowed + (wanted > allowed ? unit : -unit));
-    if (next != wanted && execute(commandFor(next), /*merge=*/true)) // refused: its message stays
-        lastApplied_ = next;
+    const long long next = allowed + (target > allowed ? 1 : -1);
+    if (next == target) { // its refusal is the one to show
+        message_ = refusal;
+        messageIsError_ = true;
+    } else if (execute(commandFor(valueOf(next)), /*merge=*/true)) { // refused: its message stays
+        lastApplied_ = valueOf(next);
+    }
 }
 
 void Interaction::onKey(const KeyPress& key) {

@@ -101,7 +101,7 @@ class Interaction {
     void onRelease(MouseButton button);
     void onKey(const KeyPress& key);
     void dragHandleTo(double y);
-    void clampDragTowards(double wanted, double unit,
+    void clampDragTowards(double wanted, int perUnit,
                           const std::function<Command(double)>& commandFor);
     void clickHandle(const Handle& h);
     void updateHover();

@@ -186,25 +186,52 @@ TEST_CASE("bar length: a drag down lengthens the bars, a seam moves both partner
     CHECK(s.piece(parts[0]).bar.at(0) == Approx(0.40).margin(1e-12));
 }
 
+namespace {
+
+/// Drags handle `h` by `dy` pixels in one move, as a fast mouse does between two frames.
+void jumpHandle(Interaction& ui, const Handle& h, double dy) {
+    const ScreenPoint sp = onScreen(ui.camera(), h.position);
+    moveTo(ui, sp.x, sp.y);
+    ui.handle(MousePress{MouseButton::Left, {}});
+    moveTo(ui, sp.x, sp.y + dy);
+    ui.handle(MouseRelease{MouseButton::Left, {}});
+}
+
+} // namespace
+
 TEST_CASE("bar length: a drag past the shortest allowed bar stops there and names the limit",
           "[interaction]") {
     Scene scene;
     Interaction ui(scene.doc, scene.camera);
     ui.setMode(Mode::BarLength);
     const std::uint64_t before = scene.doc.hash();
-    dragHandle(ui, ui.handles().front(), -400); // 2 mm per px: 0.8 m shorter, far below zero
+    jumpHandle(ui, ui.handles().front(), -170); // 2 mm per px: 0.34 m shorter, to 0.01 m
     const double stopped = scene.doc.sculpture().piece(scene.net).bar.at(0);
-    CHECK(stopped < 0.35);                              // it moved ...
-    CHECK(stopped == std::round(stopped * 1000) / 1000); // ... in whole millimetres
+    const long long millimetres = std::llround(stopped * 1000);
+    CHECK(millimetres < 350);                      // it moved ...
+    CHECK(stopped == double(millimetres) / 1000);  // ... to whole millimetres, written as such
     CHECK(ui.messageIsError());
-    const std::string limit = "bar length " + formatNumber(std::round(stopped * 1000 - 1) / 1000);
-    CHECK_THAT(ui.message(), Catch::Matchers::Contains(limit + " m at row"));
+    const double beyond = double(millimetres - 1) / 1000;
+    CHECK_THAT(ui.message(), Catch::Matchers::Contains("bar length " + formatNumber(beyond) +
+                                                       " m at row"));
     // One millimetre shorter is refused: the drag stopped at the limit, not short of it.
     CHECK_THROWS_AS(scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt,
-                                                          std::round(stopped * 1000 - 1) / 1000}),
+                                                          beyond}),
                     UserError);
     scene.doc.undo(); // one undo step, the search's tries included
     CHECK(scene.doc.hash() == before);
+}
+
+TEST_CASE("rows: a drag to one row of a piece tied by its last row stops at two, saying why",
+          "[interaction]") {
+    Scene scene;
+    scene.doc.execute(ConnectToRailCommand{scene.net, scene.ring, 0, false});
+    Interaction ui(scene.doc, scene.camera);
+    ui.setMode(Mode::Rows);
+    jumpHandle(ui, ui.handles().front(), -200); // 8 px a row: far past one row
+    CHECK(scene.doc.sculpture().piece(scene.net).rows == 2);
+    CHECK(ui.messageIsError());
+    CHECK_THAT(ui.message(), Catch::Matchers::Contains("has 1 row, so its last row is its top row"));
 }
 
 TEST_CASE("connect: a last row dropped on a rail sphere connects there", "[interaction]") {
