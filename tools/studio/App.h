@@ -107,6 +107,9 @@ class App {
     void shutdownWindow();
     void buildInitialDocument();
     void attachSession();
+    /// Keeps the session journal's work as NAME.previous.netj before it is journaled afresh;
+    /// UserError when the copy cannot be made (then nothing has changed).
+    void keepSessionWork();
     void replaceDocument(Document next);
     void frame();
     bool isLastFrame() const; ///< the frame about to be drawn is the last of --exit-after-frames

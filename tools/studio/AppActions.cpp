@@ -83,6 +83,11 @@ void App::buildInitialDocument() {
 }
 
 void App::attachSession() {
+    keepSessionWork();
+    doc_->attachJournal(sessionPath_);
+}
+
+void App::keepSessionWork() {
     std::filesystem::create_directories(sessionPath_.parent_path().empty() ? "." : sessionPath_.parent_path());
     if (hasEntries(sessionPath_)) {
         // Work in the session journal (the default one or --journal's) is kept once more before
@@ -102,7 +107,6 @@ void App::attachSession() {
                        ", and the session is journaled afresh",
                    false);
     }
-    doc_->attachJournal(sessionPath_);
 }
 
 void App::answerRestore(bool restore) {
@@ -128,8 +132,9 @@ void App::replaceDocument(Document next) {
 
 void App::newDocument() {
     attempt(*this, "new", [&] {
+        keepSessionWork(); // before the document goes: if the copy fails, nothing changes
         replaceDocument(Document{});
-        attachSession();
+        doc_->attachJournal(sessionPath_);
         currentPath_.reset();
     });
 }
@@ -138,8 +143,9 @@ bool App::openJournal(const std::filesystem::path& path) {
     return attempt(*this, "open " + path.string(), [&] {
         std::vector<std::string> warnings;
         Document opened = Document::load(path, &warnings);
+        keepSessionWork(); // before the document goes: if the copy fails, nothing changes
         replaceDocument(std::move(opened));
-        attachSession(); // journaling goes on in the session; the opened file changes only on save
+        doc_->attachJournal(sessionPath_); // the session goes on; the file changes only on save
         doc_->markClean();
         currentPath_.reset();
         if (!isSnapshot(path)) // a snapshot is not overwritten by a journal on save
