@@ -6,6 +6,7 @@
 #include "scripting/Wrap.h"
 
 #include <cmath>
+#include <limits>
 
 namespace netsculpt::lua {
 
@@ -110,8 +111,9 @@ int w_split(Call& call) {
     Document& doc = checkDocument(call);
     const TableArgs args(call, 2, {"piece", "column"});
     const PieceId piece = pieceArg(args, "piece");
-    // Any whole column reaches the model, whose message gives this piece's range.
-    const int column = int(args.whole("column", std::nullopt, -kMaxColumns, kMaxColumns));
+    // Any whole column that is an int reaches the model, whose message gives this piece's range.
+    const int column = int(args.whole("column", std::nullopt, std::numeric_limits<int>::min(),
+                                      std::numeric_limits<int>::max()));
     const CommandResult created = doc.execute(SplitCommand{piece, column});
     pushPiece(call.L, 1, created.pieces.at(0));
     pushPiece(call.L, 1, created.pieces.at(1));

@@ -25,6 +25,8 @@ T.case("whole numbers", function()
   fails(here(), function() doc:set_rows{piece = p, rows = "3"} end, "got \"3\"")
   fails(here(), function() doc:split{piece = p, column = 0} end,
         "split: column must be from 1 to 35 for piece 1", "got 0") -- the piece's own range
+  fails(here(), function() doc:split{piece = p, column = 5000000} end,
+        "split: column must be from 1 to 35 for piece 1", "got 5000000")
   fails(here(), function() doc:split{piece = p, column = 1.5} end,
         "split: argument 'column' must be a whole number", "got 1.5")
 end)
