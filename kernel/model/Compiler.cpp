@@ -15,9 +15,6 @@ namespace netsculpt {
 namespace {
 
 constexpr std::uint32_t kUnassigned = 0xffffffffu;
-/// Two holds of one seam knot closer than this are one place (rounding between the pieces'
-/// rail positions); farther apart they are two places, which a knot cannot be at.
-constexpr double kSameHoldDistance = 1e-6; // m
 
 /// Union-find over model knot slots (piece, row, column), merged where knots are shared.
 class KnotSlots {

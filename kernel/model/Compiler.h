@@ -42,6 +42,10 @@ constexpr double kOriginFreeRadius = 32;
 /// none holds a piece yet (then all the rails place it: the studio draws them from it).
 Vec3 chooseOrigin(const Sculpture& s);
 
+/// Two holds of one seam knot closer than this are one place (rounding between the pieces'
+/// rail positions); farther apart they are two places, which a knot cannot be at.
+constexpr double kSameHoldDistance = 1e-6; // m
+
 /// Rail position t of column c of a rail edge.
 double railPosition(const RailEdge& edge, int column);
 

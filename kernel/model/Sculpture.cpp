@@ -1,5 +1,6 @@
 #include "model/Sculpture.h"
 
+#include "model/Compiler.h"
 #include "model/Error.h"
 
 #include <algorithm>
@@ -123,6 +124,29 @@ void checkSeams(const Sculpture& s) {
             throw UserError("the seam between " + toString(seam.left) + " and " + toString(seam.right) +
                             " would have two bar lengths (" + formatNumber(a) + " m and " + formatNumber(b) +
                             " m); at a seam both pieces have the same bar length");
+    }
+}
+
+/// Split parts with as many rows, both tied by their last rows, share that row's seam knot: they
+/// must hold it at one place (the compiler checks every knot held twice; this names the command
+/// that does it, also on a journal's replay, which compiles only at its end).
+void checkSeamHolds(const Sculpture& s) {
+    for (const Seam& seam : s.seams) {
+        const Piece& left = s.piece(seam.left);
+        const Piece& right = s.piece(seam.right);
+        if (!left.bottom || !right.bottom || left.rows != right.rows) continue;
+        const RailEdge& a = *left.bottom;
+        const RailEdge& b = *right.bottom;
+        const Vec3 pa = s.rail(a.rail).curve().pointAt(railPosition(a, left.columns - 1));
+        const Vec3 pb = s.rail(b.rail).curve().pointAt(railPosition(b, 0));
+        const double apart = distance(pa, pb);
+        if (a.rail == b.rail && apart <= kSameHoldDistance) continue;
+        throw UserError(toString(seam.right) + ": the knot at row " + std::to_string(right.rows - 1) +
+                        ", column 0 is shared with " + toString(seam.left) + " (a seam), which " +
+                        "holds it on " + toString(a.rail) + " (" + s.rail(a.rail).name + "); " +
+                        toString(b.rail) + " (" + s.rail(b.rail).name + ") would hold it " +
+                        formatNumber(apart) + " m from there. Pieces that share a knot hold it " +
+                        "at one place: tie both to the same rail, in line");
     }
 }
 
@@ -277,6 +301,7 @@ void refreshAndValidate(Sculpture& s) {
         checkPiece(s, p);
         knots += double(p.rows) * p.columns;
     }
+    checkSeamHolds(s);
     if (knots > kMaxKnots)
         throw UserError("the sculpture would have " + formatNumber(knots) + " knots; at most " +
                         formatNumber(kMaxKnots) + " are supported");

@@ -621,8 +621,9 @@ TEST_CASE("split parts that share a seam knot hold it at one place, on one rail"
     for (const auto& [command, mentions] : refused) {
         INFO(mentions);
         CHECK_THROWS_WITH(doc.execute(command),
-                          Contains("the knot at row 5, column 0 is shared with another piece") &&
-                              Contains("on rail 3 (bottom) at t = 0.5") && Contains(mentions));
+                          Contains("the knot at row 5, column 0 is shared with piece 1 (a seam), "
+                                   "which holds it on rail 3 (bottom)") &&
+                              Contains(mentions));
         CHECK(doc.hash() == hashBefore);
     }
     doc.execute(ConnectToRailCommand{right, RailId(3), 0.5, false});
