@@ -140,9 +140,11 @@ std::string garbledLastLine(std::string_view body) {
     for (std::size_t at = body.find("\"seq\":"); at != std::string_view::npos;
          at = body.find("\"seq\":", at + 1))
         ++entries;
-    if (entries <= 1) return "a garbled last entry";
+    if (entries <= 1)
+        return "a garbled last entry";
     return "a garbled last line holding the text of " + std::to_string(entries) +
-           " entries (a damaged line end joined them; all " + std::to_string(entries) + " are lost)";
+           " entries (a damaged line end joined them; all " + std::to_string(entries) +
+           " are lost)";
 }
 
 } // namespace

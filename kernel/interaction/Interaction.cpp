@@ -29,7 +29,8 @@ std::vector<Gear> gearLadder(const Sculpture& s, const Piece& p) {
 /// A piece whose top row hangs from `rail`, or none.
 PieceId pieceOnRail(const Sculpture& s, RailId rail) {
     for (const auto& [id, piece] : s.pieces)
-        if (piece.onRail() && piece.railTop().rail == rail) return id;
+        if (piece.onRail() && piece.railTop().rail == rail)
+            return id;
     return PieceId{};
 }
 
@@ -231,11 +232,12 @@ void Interaction::clickHandle(const Handle& h) {
                                       settings_.newPieceMaxColumns);
         args.at = curve.closed() ? h.t : 0; // a piece on an open rail spans it from its start
         const PieceId already = pieceOnRail(s, h.rail);
-        if (!execute(AttachToRailCommand{args})) break;
+        if (!execute(AttachToRailCommand{args}))
+            break;
         selected_ = lastCreated_.pieces.front();
         if (already)
-            message_ = "attach_to_rail: " + toString(h.rail) + " already holds " + toString(already) +
-                       "; the new piece hangs over it (Ctrl+Z takes it back)";
+            message_ = "attach_to_rail: " + toString(h.rail) + " already holds " +
+                       toString(already) + "; the new piece hangs over it (Ctrl+Z takes it back)";
         break;
     }
     case HandleKind::LastRow: {
@@ -275,7 +277,9 @@ void Interaction::dragHandleTo(double y) {
             const auto ladder = gearLadder(s, p);
             if (ladder.empty()) return;
             value = std::clamp(int(dragStartValue_) + steps(-down, settings_.pixelsPerGear), 0, int(ladder.size()) - 1);
-            commandFor = [id, ladder](double v) { return SetGearCommand{id, ladder[std::size_t(v)]}; };
+            commandFor = [id, ladder](double v) {
+                return SetGearCommand{id, ladder[std::size_t(v)]};
+            };
         }
         break;
     case HandleKind::BarEnd: { // up = shorter, down = longer; whole millimetres
@@ -283,10 +287,13 @@ void Interaction::dragHandleTo(double y) {
         value = std::max(0.001, length);
         perUnit = 1000;
         const std::optional<int> column = h.barColumn;
-        commandFor = [id, column](double v) { return SetBarLengthCommand{id, column, std::nullopt, v}; };
+        commandFor = [id, column](double v) {
+            return SetBarLengthCommand{id, column, std::nullopt, v};
+        };
         break;
     }
-    default: return; // a connect drag changes only what is hovered
+    default:
+        return; // a connect drag changes only what is hovered
     }
     if (value == lastApplied_) return;
     if (execute(commandFor(value), /*merge=*/true)) {

@@ -230,9 +230,7 @@ class Builder {
         sys.hold[k] = RailHold{edge.rail, t};
     }
 
-    std::string railName(RailId id) const {
-        return toString(id) + " (" + s_.rail(id).name + ")";
-    }
+    std::string railName(RailId id) const { return toString(id) + " (" + s_.rail(id).name + ")"; }
 
     /// A knot that two pieces share (a seam) and both hold on rails must be held at one place.
     void checkSameHold(std::uint32_t k, RailId rail, const Vec3& place, PieceId piece, int row,
@@ -240,13 +238,15 @@ class Builder {
         const MassSpringSystem& sys = out_.system;
         const RailHold& held = sys.hold[k];
         const double apart = distance(sys.position[k], place);
-        if (held.rail == rail && apart <= kSameHoldDistance) return;
-        throw UserError(toString(piece) + ": the knot at row " + std::to_string(row) + ", column " +
-                        std::to_string(column) + " is shared with another piece (a seam) that holds " +
-                        "it on " + railName(held.rail) + " at t = " + formatNumber(held.t) + "; " +
-                        railName(rail) + " would hold it " + formatNumber(apart) + " m from there. " +
-                        "Pieces that share a knot hold it at one place: tie both to the same rail, " +
-                        "in line");
+        if (held.rail == rail && apart <= kSameHoldDistance)
+            return;
+        throw UserError(
+            toString(piece) + ": the knot at row " + std::to_string(row) + ", column " +
+            std::to_string(column) + " is shared with another piece (a seam) that holds " +
+            "it on " + railName(held.rail) + " at t = " + formatNumber(held.t) + "; " +
+            railName(rail) + " would hold it " + formatNumber(apart) + " m from there. " +
+            "Pieces that share a knot hold it at one place: tie both to the same rail, " +
+            "in line");
     }
 
     void fixRailRows() {
@@ -254,9 +254,11 @@ class Builder {
             const Piece& p = s_.pieces.at(id);
             const PieceKnots& pk = out_.pieces.at(id);
             if (p.onRail())
-                for (int c = 0; c < p.columns; ++c) fixOnRail(pk.at(0, c), p.railTop(), id, 0, c);
+                for (int c = 0; c < p.columns; ++c)
+                    fixOnRail(pk.at(0, c), p.railTop(), id, 0, c);
             if (p.bottom)
-                for (int c = 0; c < p.columns; ++c) fixOnRail(pk.at(p.rows - 1, c), *p.bottom, id, p.rows - 1, c);
+                for (int c = 0; c < p.columns; ++c)
+                    fixOnRail(pk.at(p.rows - 1, c), *p.bottom, id, p.rows - 1, c);
         }
     }
 

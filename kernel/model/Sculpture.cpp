@@ -134,18 +134,21 @@ void checkSeamHolds(const Sculpture& s) {
     for (const Seam& seam : s.seams) {
         const Piece& left = s.piece(seam.left);
         const Piece& right = s.piece(seam.right);
-        if (!left.bottom || !right.bottom || left.rows != right.rows) continue;
+        if (!left.bottom || !right.bottom || left.rows != right.rows)
+            continue;
         const RailEdge& a = *left.bottom;
         const RailEdge& b = *right.bottom;
         const Vec3 pa = s.rail(a.rail).curve().pointAt(railPosition(a, left.columns - 1));
         const Vec3 pb = s.rail(b.rail).curve().pointAt(railPosition(b, 0));
         const double apart = distance(pa, pb);
-        if (a.rail == b.rail && apart <= kSameHoldDistance) continue;
-        throw UserError(toString(seam.right) + ": the knot at row " + std::to_string(right.rows - 1) +
-                        ", column 0 is shared with " + toString(seam.left) + " (a seam), which " +
-                        "holds it on " + toString(a.rail) + " (" + s.rail(a.rail).name + "); " +
-                        toString(b.rail) + " (" + s.rail(b.rail).name + ") would hold it " +
-                        formatNumber(apart) + " m from there. Pieces that share a knot hold it " +
+        if (a.rail == b.rail && apart <= kSameHoldDistance)
+            continue;
+        throw UserError(toString(seam.right) + ": the knot at row " +
+                        std::to_string(right.rows - 1) + ", column 0 is shared with " +
+                        toString(seam.left) + " (a seam), which " + "holds it on " +
+                        toString(a.rail) + " (" + s.rail(a.rail).name + "); " + toString(b.rail) +
+                        " (" + s.rail(b.rail).name + ") would hold it " + formatNumber(apart) +
+                        " m from there. Pieces that share a knot hold it " +
                         "at one place: tie both to the same rail, in line");
     }
 }

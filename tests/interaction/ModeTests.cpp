@@ -208,16 +208,16 @@ TEST_CASE("bar length: a drag past the shortest allowed bar stops there and name
     jumpHandle(ui, ui.handles().front(), -170); // 2 mm per px: 0.34 m shorter, to 0.01 m
     const double stopped = scene.doc.sculpture().piece(scene.net).bar.at(0);
     const long long millimetres = std::llround(stopped * 1000);
-    CHECK(millimetres < 350);                      // it moved ...
-    CHECK(stopped == double(millimetres) / 1000);  // ... to whole millimetres, written as such
+    CHECK(millimetres < 350);                     // it moved ...
+    CHECK(stopped == double(millimetres) / 1000); // ... to whole millimetres, written as such
     CHECK(ui.messageIsError());
     const double beyond = double(millimetres - 1) / 1000;
-    CHECK_THAT(ui.message(), Catch::Matchers::Contains("bar length " + formatNumber(beyond) +
-                                                       " m at row"));
+    CHECK_THAT(ui.message(),
+               Catch::Matchers::Contains("bar length " + formatNumber(beyond) + " m at row"));
     // One millimetre shorter is refused: the drag stopped at the limit, not short of it.
-    CHECK_THROWS_AS(scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt,
-                                                          beyond}),
-                    UserError);
+    CHECK_THROWS_AS(
+        scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt, beyond}),
+        UserError);
     scene.doc.undo(); // one undo step, the search's tries included
     CHECK(scene.doc.hash() == before);
 }
@@ -231,7 +231,8 @@ TEST_CASE("rows: a drag to one row of a piece tied by its last row stops at two,
     jumpHandle(ui, ui.handles().front(), -200); // 8 px a row: far past one row
     CHECK(scene.doc.sculpture().piece(scene.net).rows == 2);
     CHECK(ui.messageIsError());
-    CHECK_THAT(ui.message(), Catch::Matchers::Contains("has 1 row, so its last row is its top row"));
+    CHECK_THAT(ui.message(),
+               Catch::Matchers::Contains("has 1 row, so its last row is its top row"));
 }
 
 TEST_CASE("connect: a last row dropped on a rail sphere connects there", "[interaction]") {

@@ -374,7 +374,8 @@ TEST_CASE("a tube connected to a second rail has its last row fixed on that rail
     CHECK(c.system.hold[c.knotOf(p, 7, 4)].t == Approx(0.5));
 }
 
-TEST_CASE("a knot held on a closed rail has its rail position from 0 up to 1 and its place unchanged") {
+TEST_CASE(
+    "a knot held on a closed rail has its rail position from 0 up to 1 and its place unchanged") {
     Sculpture s;
     RailId top = edit(s, [](Sculpture& m) { return addRail(m, "top", polygonRail(7, 2.0, 0)); });
     RailId bottom =
@@ -382,7 +383,10 @@ TEST_CASE("a knot held on a closed rail has its rail position from 0 up to 1 and
     PieceId p = edit(s, [&](Sculpture& m) {
         return attachToRail(m, {top, 12, 0, 6, 0.6, 0.9, false});
     });
-    edit(s, [&](Sculpture& m) { connectToRail(m, p, bottom, 0.3, true); return 0; });
+    edit(s, [&](Sculpture& m) {
+        connectToRail(m, p, bottom, 0.3, true);
+        return 0;
+    });
     const auto c = compileSculpture(s);
     const PieceKnots& knots = c.pieces.at(p);
     int wrapped = 0;
@@ -396,8 +400,8 @@ TEST_CASE("a knot held on a closed rail has its rail position from 0 up to 1 and
             const double unwrapped = row == 0 ? 0.9 + column / 12.0 : 0.3 - column / 12.0;
             wrapped += unwrapped < 0 || unwrapped >= 1;
             const Curve& rail = s.rail(hold.rail).curve();
-            const Vec3 off =
-                c.system.position[knots.at(row, column)] + c.system.origin - rail.pointAt(unwrapped);
+            const Vec3 off = c.system.position[knots.at(row, column)] + c.system.origin -
+                             rail.pointAt(unwrapped);
             CHECK(off.norm() < 1e-12);
         }
     CHECK(wrapped == 10 + 8); // columns 2-11 above (t from 1.067), 4-11 below (from -0.033)
@@ -414,18 +418,29 @@ TEST_CASE("a piece of one row is not tied to a rail by its last row, which is it
     PieceId tied = edit(s, [&](Sculpture& m) {
         return attachToRail(m, {top, 16, 0, 8, 0.6, 0.5, false});
     });
-    edit(s, [&](Sculpture& m) { connectToRail(m, tied, bottom, 0, false); return 0; });
+    edit(s, [&](Sculpture& m) {
+        connectToRail(m, tied, bottom, 0, false);
+        return 0;
+    });
     const Sculpture before = s;
     const std::string needle = "has 1 row, so its last row is its top row";
-    REQUIRE_THROWS_WITH(edit(s, [&](Sculpture& m) {
-                            connectToRail(m, band, bottom, 0, false);
-                            return 0;
-                        }),
+    REQUIRE_THROWS_WITH(edit(s,
+                             [&](Sculpture& m) {
+                                 connectToRail(m, band, bottom, 0, false);
+                                 return 0;
+                             }),
                         Contains(toString(band) + " " + needle));
-    REQUIRE_THROWS_WITH(edit(s, [&](Sculpture& m) { setRows(m, tied, 1); return 0; }),
+    REQUIRE_THROWS_WITH(edit(s,
+                             [&](Sculpture& m) {
+                                 setRows(m, tied, 1);
+                                 return 0;
+                             }),
                         Contains(toString(tied) + " " + needle));
     CHECK(sameModel(before, s));
-    edit(s, [&](Sculpture& m) { setRows(m, tied, 2); return 0; });
+    edit(s, [&](Sculpture& m) {
+        setRows(m, tied, 2);
+        return 0;
+    });
     CHECK(s.piece(tied).rows == 2);
 }
 

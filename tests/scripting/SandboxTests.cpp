@@ -132,12 +132,15 @@ TEST_CASE("A script reads only in its own folder and the output folder", "[sandb
 TEST_CASE("A studio's shared modules load from a library folder given to the run", "[sandbox]") {
     const ScriptFolders f("library");
     const std::filesystem::path shared = f.root / "studio-lib";
-    f.write(shared / "studio" / "rails.lua",
-            "local M = {}\nfunction M.name() return io.open(M.folder .. '/names.txt'):read('l') end\n"
-            "return M\n");
+    f.write(
+        shared / "studio" / "rails.lua",
+        "local M = {}\nfunction M.name() return io.open(M.folder .. '/names.txt'):read('l') end\n"
+        "return M\n");
     f.write(shared / "studio" / "names.txt", "crown\n");
     const std::string code = "local rails = require('studio.rails')\n"
-                             "rails.folder = '" + (shared / "studio").string() + "'\n"
+                             "rails.folder = '" +
+                             (shared / "studio").string() +
+                             "'\n"
                              "assert(rails.name() == 'crown')\n";
     const auto without = f.run(code);
     CHECK_FALSE(without.ok);

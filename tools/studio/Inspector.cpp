@@ -31,7 +31,8 @@ std::string railLabel(const Sculpture& s, RailId id) {
 /// Where a rail edge's column 0 is on its rail, "rail 1 (crown) at t = 0.25": a split part's
 /// edge keeps its parent's start and counts its columns from its offset.
 std::string edgeLabel(const Sculpture& s, const RailEdge& edge) {
-    if (!s.hasRail(edge.rail)) return toString(edge.rail);
+    if (!s.hasRail(edge.rail))
+        return toString(edge.rail);
     const double t = s.rail(edge.rail).curve().normalizedPosition(railPosition(edge, 0));
     char at[32];
     std::snprintf(at, sizeof at, " at t = %.4g", t);
@@ -108,7 +109,8 @@ void Panels::drawPiece(App& app, PieceId id) {
     const PieceId left = s.leftPartner(id), right = s.rightPartner(id);
     if (left || right)
         ImGui::TextDisabled("seams: %s%s%s", left ? ("left " + toString(left)).c_str() : "",
-                            left && right ? ", " : "", right ? ("right " + toString(right)).c_str() : "");
+                            left && right ? ", " : "",
+                            right ? ("right " + toString(right)).c_str() : "");
 
     // Bar lengths: by column (first, last) or by row (top, last row).
     const bool byRow = p.bar.axis == BarAxis::Row;

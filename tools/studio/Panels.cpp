@@ -217,7 +217,8 @@ void Panels::drawSolver(App& app) {
         if (ImGui::Button("Refine")) app.refine();
         ImGui::SameLine();
         ImGui::TextDisabled("%.0f fps", app.framesPerSecond());
-        if (app.colourBy() == ColourBy::Tension) drawTensionScale(app.maxTension());
+        if (app.colourBy() == ColourBy::Tension)
+            drawTensionScale(app.maxTension());
     }
     ImGui::End();
 }
@@ -237,8 +238,8 @@ void Panels::drawTensionScale(double maxTension) {
         const float x1 = at.x + slack + 6 + width * float(i + 1) / kSteps;
         const ImU32 left = colour(tensionColour(double(i) / kSteps + 1e-9, 1));
         const ImU32 right = colour(tensionColour(double(i + 1) / kSteps, 1));
-        draw->AddRectFilledMultiColor(ImVec2(x0, at.y), ImVec2(x1, at.y + height), left, right, right,
-                                      left);
+        draw->AddRectFilledMultiColor(ImVec2(x0, at.y), ImVec2(x1, at.y + height), left, right,
+                                      right, left);
     }
     ImGui::Dummy(ImVec2(kRightWidth - 20, height));
     const float left = ImGui::GetCursorPosX();
@@ -321,8 +322,8 @@ void Panels::drawDialogs(App& app) {
         if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
         ImGui::SetNextItemWidth(460);
         const bool enter = ImGui::InputText("##path", &path_,
-                                              ImGuiInputTextFlags_EnterReturnsTrue |
-                                                  ImGuiInputTextFlags_AutoSelectAll);
+                                            ImGuiInputTextFlags_EnterReturnsTrue |
+                                                ImGuiInputTextFlags_AutoSelectAll);
         if ((ImGui::Button("OK") || enter) && !path_.empty()) {
             ImGui::CloseCurrentPopup();
             askPath_.reset();
