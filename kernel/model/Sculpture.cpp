@@ -45,7 +45,10 @@ void checkRailEdge(const Sculpture& s, const Piece& p, const RailEdge& e, const 
         if (std::min(t0, t1) < -tolerance || std::max(t0, t1) > 1 + tolerance)
             throw UserError(toString(p.id) + ": its " + which + " row would run off the end of open " +
                             toString(rail.id) + " (rail positions " + formatNumber(std::min(t0, t1)) +
-                            " to " + formatNumber(std::max(t0, t1)) + "; allowed 0 to 1)");
+                            " to " + formatNumber(std::max(t0, t1)) + "; allowed 0 to 1: the row " +
+                            "needs " + formatNumber(span * rail.curve().length()) + " m of rail " +
+                            "from there, the rail is " + formatNumber(rail.curve().length()) +
+                            " m long)");
     }
 }
 
@@ -54,7 +57,13 @@ void refreshParentTop(const Sculpture& s, Piece& p) {
     if (edge.parents.empty()) throw UserError(toString(p.id) + ": its top has no parent piece");
     for (PieceId parent : edge.parents) (void)s.piece(parent);
     const int n = int(sourceRow(s, edge).size());
-    const int virtualColumns = gearedColumns(n, edge.ringClosed, edge.gear);
+    int virtualColumns = 0;
+    try {
+        virtualColumns = gearedColumns(n, edge.ringClosed, edge.gear);
+    } catch (const UserError& e) { // name the child whose gear the parent's row no longer fits
+        throw UserError(toString(p.id) + ", hanging below " + toString(edge.parents.front()) +
+                        ": " + e.what());
+    }
     if (edge.whole) {
         const int old = p.columns;
         p.columns = virtualColumns;

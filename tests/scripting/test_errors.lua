@@ -124,4 +124,23 @@ T.case("errors from the kernel name the call and keep the sculpture", function()
   fails(here(), function() doc:redo() end, "redo: nothing to redo")
 end)
 
+T.case("a refusal caused by another piece names it, and a row too long for its rail the lengths",
+       function()
+  local d = ns.new()
+  local r = d:add_rail{points = T.circle(2, 5, 24), closed = true}
+  local top = d:attach_to_rail{rail = r, columns = 36, rows = 3, bar = 0.4}
+  d:attach_to_piece{piece = top, gear = 0.5, rows = 3, bar = 0.8}
+  local kept = d:hash()
+  T.raises(function() d:set_columns{piece = top, columns = 35} end,
+           "set_columns: piece 2, hanging below piece 1: gear 1/2 does not divide a row of 35")
+  T.eq(d:hash(), kept)
+  local line = d:add_rail{points = {{0, 0, 0}, {3, 0, 0}}}
+  local sheet = d:attach_to_rail{rail = line, columns = 7, rows = 3, bar = 0.4}
+  kept = d:hash()
+  T.raises(function() d:connect_to_rail{piece = sheet, rail = line, at = 0.5} end,
+           "piece 3: its last row would run off the end of open rail 2",
+           "the row needs 3 m of rail from there, the rail is 3 m long")
+  T.eq(d:hash(), kept)
+end)
+
 T.done("test_errors")
