@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <numeric>
 #include <set>
@@ -216,37 +217,19 @@ class Builder {
         uppers_.assign(n, {});
     }
 
-    void fixOnRail(std::uint32_t k, const RailEdge& edge, PieceId piece, int row, int column) {
+    void fixOnRail(std::uint32_t k, const RailEdge& edge, int column) {
         MassSpringSystem& sys = out_.system;
         const Curve& rail = s_.rail(edge.rail).curve();
         const double t = rail.normalizedPosition(railPosition(edge, column)); // closed: in [0, 1)
         const Vec3 place = rail.pointAt(t) - sys.origin;
-        if (sys.fixed[k]) { // a seam knot that two rows hold: at one place
-            checkSameHold(k, edge.rail, place, piece, row, column);
+        if (sys.fixed[k]) { // a seam knot that two rows hold: at one place (checkSeamHolds)
+            assert(sys.hold[k].rail == edge.rail &&
+                   distance(sys.position[k], place) <= kSameHoldDistance);
             return;
         }
         sys.position[k] = place;
         sys.fixed[k] = 1;
         sys.hold[k] = RailHold{edge.rail, t};
-    }
-
-    std::string railName(RailId id) const { return toString(id) + " (" + s_.rail(id).name + ")"; }
-
-    /// A knot that two pieces share (a seam) and both hold on rails must be held at one place.
-    void checkSameHold(std::uint32_t k, RailId rail, const Vec3& place, PieceId piece, int row,
-                       int column) const {
-        const MassSpringSystem& sys = out_.system;
-        const RailHold& held = sys.hold[k];
-        const double apart = distance(sys.position[k], place);
-        if (held.rail == rail && apart <= kSameHoldDistance)
-            return;
-        throw UserError(
-            toString(piece) + ": the knot at row " + std::to_string(row) + ", column " +
-            std::to_string(column) + " is shared with another piece (a seam) that holds " +
-            "it on " + railName(held.rail) + " at t = " + formatNumber(held.t) + "; " +
-            railName(rail) + " would hold it " + formatNumber(apart) + " m from there. " +
-            "Pieces that share a knot hold it at one place: tie both to the same rail, " +
-            "in line");
     }
 
     void fixRailRows() {
@@ -255,10 +238,10 @@ class Builder {
             const PieceKnots& pk = out_.pieces.at(id);
             if (p.onRail())
                 for (int c = 0; c < p.columns; ++c)
-                    fixOnRail(pk.at(0, c), p.railTop(), id, 0, c);
+                    fixOnRail(pk.at(0, c), p.railTop(), c);
             if (p.bottom)
                 for (int c = 0; c < p.columns; ++c)
-                    fixOnRail(pk.at(p.rows - 1, c), *p.bottom, id, p.rows - 1, c);
+                    fixOnRail(pk.at(p.rows - 1, c), *p.bottom, c);
         }
     }
 

@@ -137,8 +137,9 @@ void checkSeams(const Sculpture& s) {
 }
 
 /// Split parts with as many rows, both tied by their last rows, share that row's seam knot: they
-/// must hold it at one place (the compiler checks every knot held twice; this names the command
-/// that does it, also on a journal's replay, which compiles only at its end).
+/// must hold it at one place. The only knots two rail edges hold (split parts' tops come from
+/// one edge); checked here, so that a journal's replay, which compiles only at its end, names
+/// the command that does it.
 void checkSeamHolds(const Sculpture& s) {
     for (const Seam& seam : s.seams) {
         const Piece& left = s.piece(seam.left);
