@@ -358,10 +358,29 @@ TEST_CASE("bad input is refused with a clear message and changes nothing") {
     REQUIRE_THROWS_WITH(t.s.piece(t.piece), Contains("piece 1 was removed"));
 }
 
-TEST_CASE("a tube connected to a second rail has its last row fixed on that rail") {
+namespace {
+
+/// A sculpture of two regular polygon rails: "top" of radius 2 m at z = 0 and "bottom" of
+/// radius 1 m at z = -3, with `corners` corners each.
+struct TwoRings {
     Sculpture s;
-    RailId top = edit(s, [](Sculpture& m) { return addRail(m, "top", polygonRail(16, 2.0, 0)); });
-    RailId bottom = edit(s, [](Sculpture& m) { return addRail(m, "bottom", polygonRail(16, 1.0, -3)); });
+    RailId top, bottom;
+    explicit TwoRings(int corners) {
+        top = edit(s, [&](Sculpture& m) {
+            return addRail(m, "top", polygonRail(corners, 2.0, 0));
+        });
+        bottom = edit(s, [&](Sculpture& m) {
+            return addRail(m, "bottom", polygonRail(corners, 1.0, -3));
+        });
+    }
+};
+
+} // namespace
+
+TEST_CASE("a tube connected to a second rail has its last row fixed on that rail") {
+    TwoRings rings(16);
+    Sculpture& s = rings.s;
+    const RailId top = rings.top, bottom = rings.bottom;
     PieceId p = edit(s, [&](Sculpture& m) { return attachToRail(m, {top, 16, 0, 8, 0.6, 0, false}); });
     edit(s, [&](Sculpture& m) { connectToRail(m, p, bottom, 0.25, false); return 0; });
     auto c = compileSculpture(s);
@@ -376,10 +395,9 @@ TEST_CASE("a tube connected to a second rail has its last row fixed on that rail
 
 TEST_CASE(
     "a knot held on a closed rail has its rail position from 0 up to 1 and its place unchanged") {
-    Sculpture s;
-    RailId top = edit(s, [](Sculpture& m) { return addRail(m, "top", polygonRail(7, 2.0, 0)); });
-    RailId bottom =
-        edit(s, [](Sculpture& m) { return addRail(m, "bottom", polygonRail(7, 1.0, -3)); });
+    TwoRings rings(7);
+    Sculpture& s = rings.s;
+    const RailId top = rings.top, bottom = rings.bottom;
     PieceId p = edit(s, [&](Sculpture& m) {
         return attachToRail(m, {top, 12, 0, 6, 0.6, 0.9, false});
     });
@@ -408,10 +426,9 @@ TEST_CASE(
 }
 
 TEST_CASE("a piece of one row is not tied to a rail by its last row, which is its top row") {
-    Sculpture s;
-    RailId top = edit(s, [](Sculpture& m) { return addRail(m, "top", polygonRail(16, 2.0, 0)); });
-    RailId bottom =
-        edit(s, [](Sculpture& m) { return addRail(m, "bottom", polygonRail(16, 1.0, -3)); });
+    TwoRings rings(16);
+    Sculpture& s = rings.s;
+    const RailId top = rings.top, bottom = rings.bottom;
     PieceId band = edit(s, [&](Sculpture& m) {
         return attachToRail(m, {top, 16, 0, 1, 0.6, 0, false});
     });
