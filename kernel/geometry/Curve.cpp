@@ -487,6 +487,13 @@ double Curve::positionOfParameter(double u) const {
     return std::clamp(t, 0.0, 1.0);
 }
 
+double Curve::distanceAlong(double t) const {
+    const double position = normalizedPosition(t);
+    if (spec_.sampling == Sampling::ArcLength)
+        return position * length_;
+    return std::min(arcLengthAt(*geometry_, parameterAt(position)), length_);
+}
+
 Vec3 Curve::pointAt(double t) const {
     return evaluate(parameterAt(t));
 }

@@ -71,6 +71,9 @@ class Curve {
     /// Rail position t as pointAt takes it: clamped to [0, 1] (open) or wrapped to [0, 1)
     /// (closed). Throws UserError when t is NaN or infinite.
     double normalizedPosition(double t) const;
+    /// Arc length from the curve's start to rail position t, m (t normalized first): what a
+    /// tape laid along the rail measures. t x length() only under Sampling::ArcLength.
+    double distanceAlong(double t) const;
     /// Unit tangent at rail position t (the rail's direction). At a polyline vertex it is the
     /// direction of the segment that starts there (of the last segment at an open end).
     Vec3 tangentAt(double t) const;

@@ -39,10 +39,20 @@ json barAt(const MassSpringSystem& sys, std::size_t b) {
             {"b", {{"row", e.row}, {"column", e.column}}}};
 }
 
+/// A rail edge as stored (at, step, offset: DESIGN.md "Pieces") and where its column 0 is: the
+/// rail position `start` and the distance along the rail to it, `start_along`, in metres.
 json railEdge(const Sculpture& s, const RailEdge& e) {
-    return {{"kind", "rail"},      {"rail", e.rail.value}, {"rail_name", s.rail(e.rail).name},
-            {"at", e.at},          {"step", e.step},       {"offset", e.offset},
-            {"reverse", e.reverse}};
+    const Curve& curve = s.rail(e.rail).curve();
+    const double start = curve.normalizedPosition(railPosition(e, 0));
+    return {{"kind", "rail"},
+            {"rail", e.rail.value},
+            {"rail_name", s.rail(e.rail).name},
+            {"at", e.at},
+            {"step", e.step},
+            {"offset", e.offset},
+            {"reverse", e.reverse},
+            {"start", start},
+            {"start_along", curve.distanceAlong(start)}};
 }
 
 json pieceTop(const Sculpture& s, const Piece& p) {
@@ -134,6 +144,7 @@ json pieceReport(const Sculpture& s, const CompiledSculpture& c, const Piece& p,
             {"columns", p.columns},
             {"closed", p.closed},
             {"knots", std::size_t(p.rows) * std::size_t(p.columns)},
+            {"knots_tied", ownedKnots},
             {"bars", bars},
             {"rope_length", rope},
             {"mass", ropeMass + m.knotMass * double(ownedKnots)},
@@ -179,6 +190,7 @@ nlohmann::json buildReport(const Sculpture& s, const CompiledSculpture& c,
     report["units"] = {{"length", "m"},
                        {"mass", "kg"},
                        {"force", "N"},
+                       {"strain", "fraction of the rest length (0.01 = 1 %)"},
                        {"axes", "the sculpture's, z up"},
                        {"reaction",
                         "the force a rail exerts on the net; its load is the opposite"}};
@@ -258,6 +270,7 @@ nlohmann::json buildReport(const Sculpture& s, const CompiledSculpture& c,
                               {"row", ref.row},
                               {"column", ref.column},
                               {"t", sys.hold[k].t},
+                              {"along", rail.curve().distanceAlong(sys.hold[k].t)},
                               {"position", vec(sys.worldPosition(k))},
                               {"reaction", vec(reaction[k])},
                               {"magnitude", reaction[k].norm()}});
@@ -267,6 +280,9 @@ nlohmann::json buildReport(const Sculpture& s, const CompiledSculpture& c,
                          {"name", rail.name},
                          {"closed", rail.curve().closed()},
                          {"length", rail.curve().length()},
+                         {"sampling", rail.curve().spec().sampling == Sampling::ArcLength
+                                          ? "arc length"
+                                          : "parameter"},
                          {"attachments", held.size()},
                          {"reaction", vec(sum)},
                          {"max_reaction", largest},

@@ -9,7 +9,8 @@
 //   snapshot keeps only whether it was relaxed), knots, bars (distinct, whole sculpture),
 //   total_mass, total_weight, rope_length, max_tension, max_tension_at {bar, piece, a {row,
 //   column}, b {row, column}} (null without bars), slack_bars (bars shorter than their rest length
-//   by more than 1e-9 relative: in compression), max_strain (the largest (l - l_eq) / l_eq, 0
+//   by more than 1e-9 relative: in compression), max_strain (the largest (l - l_eq) / l_eq, a
+//   fraction (0.01 = 1 %; the Markdown prints per cent), 0
 //   when no bar is stretched), max_strain_at (as max_tension_at; null when no bar is stretched),
 //   overstretched_bars (bars stretched by more than overstretch_limit = kOverstretchStrain; in a
 //   relaxed shape, a design the rope cannot hang as computed, which the Markdown says; an Eq. 2
@@ -18,7 +19,8 @@
 //   within_tolerance, relaxed, note}. Without a converged relaxation the balance is not expected to
 //   hold.
 //   pieces[]: id, name, rows, columns, closed, knots (rows x columns: its own grid, shared
-//   knots counted in every piece holding them), bars (the bars the piece owns), rope_length
+//   knots counted in every piece holding them), knots_tied (the knots it owns: a shared knot is
+//   tied once, in the first piece that holds it; they sum to `knots`), bars (the bars the piece owns), rope_length
 //   (sum of their rest lengths), mass (its bars' rope + the knot mass of the knots it owns: a
 //   shared knot's knot mass counts once, in the first piece that holds it; the pieces' masses
 //   sum to total_mass), bar_axis ("column" or "row"), bar_lengths[] (per column or per row),
@@ -26,14 +28,18 @@
 //   between rows r and r + 1, as it is knotted; empty otherwise), max_tension (the largest
 //   tension of its bars, 0 when none is stretched),
 //   material {stiffness, compression_ratio, knot_mass, linear_density}, colour [r, g, b],
-//   top {kind "rail": rail, rail_name, at, step, offset, reverse | kind "piece": parents[], gear,
-//   gear_value, offset} (offset: the column of the rail's or the parents' row where the piece's
-//   column 0 is), bottom (null or {rail, rail_name, at, step, offset, reverse}), seams[] {side
+//   top {kind "rail": rail, rail_name, at, step, offset, reverse, start, start_along | kind
+//   "piece": parents[], gear, gear_value, offset} (offset: the column of the rail's or the
+//   parents' row where the piece's column 0 is; start: the rail position of column 0, in [0, 1)
+//   on a closed rail; start_along: the distance along the rail from its start to there, m),
+//   bottom (null or {rail, rail_name, at, step, offset, reverse, start, start_along}), seams[] {side
 //   "left"/"right", piece, shared_bars (the bars along the seam column, made once),
 //   shared_bars_counted_in (the piece whose bars they are)}.
-//   rails[]: id, name, closed, length, attachments (fixed knots held by it), reaction (sum of
-//   the reaction forces of its points), max_reaction (largest magnitude), points[] {piece, row,
-//   column, t, reaction, magnitude}.
+//   rails[]: id, name, closed, length, sampling ("arc length" or "parameter": what t means),
+//   attachments (fixed knots held by it), reaction (sum of the reaction forces of its points),
+//   max_reaction (largest magnitude), points[] {piece, row, column, t, along (the distance along
+//   the rail from its start, m: what a tape measures; t x length only under arc-length
+//   sampling), position, reaction, magnitude}.
 
 #include "commands/Document.h"
 

@@ -4,6 +4,7 @@
 #include "io/Report.h"
 
 #include "io/IoText.h"
+#include "io/ReportSections.h"
 
 #include <nlohmann/json.hpp>
 
@@ -14,10 +15,6 @@
 
 namespace netsculpt {
 
-namespace {
-
-using nlohmann::json;
-
 std::string g6(double value) {
     if (value == 0)
         value = 0; // no "-0"
@@ -26,12 +23,32 @@ std::string g6(double value) {
     return text;
 }
 
+namespace {
+
+using netsculpt::g6; // beside the JSON overload below, so that a double finds the double one
+using nlohmann::json;
+
 std::string g6(const json& v) {
     return v.is_number() ? g6(v.get<double>()) : "-";
 }
 
+/// A place or a distance to a tenth of a millimetre, however far from the origin (site
+/// coordinates are hundreds of kilometres from it).
+std::string metres(double value) {
+    if (std::abs(value) < 5e-5)
+        value = 0; // no "-0.0000"
+    char text[48];
+    std::snprintf(text, sizeof text, "%.4f", value);
+    return text;
+}
+
 std::string vecText(const json& v) {
     return io::concat({"(", g6(v["x"]), ", ", g6(v["y"]), ", ", g6(v["z"]), ")"});
+}
+
+std::string placeText(const json& v) {
+    return io::concat({"(", metres(v["x"].get<double>()), ", ", metres(v["y"].get<double>()),
+                       ", ", metres(v["z"].get<double>()), ")"});
 }
 
 std::string cell(const std::string& text) {
@@ -62,30 +79,17 @@ std::string barText(const json& at) {
            num(at["b"]["column"]);
 }
 
-const json& railOf(const json& rails, const json& id) {
-    for (const json& rail : rails)
-        if (rail["id"] == id)
-            return rail;
-    throw std::logic_error("report: no rail " + num(id));
-}
-
-/// Where an edge on a rail starts: "rail 1 (crown), from 10 m along it (t = 0.333)", and
+/// Where an edge on a rail starts: "rail 1 (crown), from 10.0000 m along it (t = 0.333)", and
 /// ", backwards" when its columns run against the rail's direction.
-std::string railEdgeText(const json& edge, const json& rails) {
-    const bool reverse = edge["reverse"].get<bool>();
-    const json& rail = railOf(rails, edge["rail"]);
-    double t = edge["at"].get<double>() +
-               (reverse ? -1.0 : 1.0) * edge["offset"].get<double>() * edge["step"].get<double>();
-    if (rail["closed"].get<bool>())
-        t -= std::floor(t);
+std::string railEdgeText(const json& edge) {
     return "rail " + num(edge["rail"]) + " (" + edge["rail_name"].get<std::string>() + "), from " +
-           g6(t * rail["length"].get<double>()) + " m along it (t = " + g6(t) + ")" +
-           (reverse ? ", backwards" : "");
+           metres(edge["start_along"].get<double>()) + " m along it (t = " + g6(edge["start"]) +
+           ")" + (edge["reverse"].get<bool>() ? ", backwards" : "");
 }
 
-std::string topText(const json& top, const json& rails) {
+std::string topText(const json& top) {
     if (top["kind"] == "rail")
-        return railEdgeText(top, rails);
+        return railEdgeText(top);
     std::string parents;
     for (const auto& p : top["parents"])
         parents += io::concat({parents.empty() ? "" : "+", std::to_string(p.get<int>())});
@@ -134,19 +138,23 @@ std::string knottedEnds(const json& p) {
 
 std::string piecesMarkdown(const json& r) {
     std::string md =
-        "## Pieces\n\nBar lengths as knotted, first to last. A seam's two pieces share the knots "
-        "of one column; the bars along it are made once, with the piece they are counted in.\n\n"
-        "| id | name | rows x columns | closed | knots | bars | rope (m) | mass (kg) | bar length "
-        "(m) | largest tension (N) | top | last row | seams |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "## Pieces\n\nBar lengths as knotted, first to last (every bar's length under Bar "
+        "lengths below), from knot centre to knot centre. A seam's two pieces share the knots of "
+        "one column, and a piece hanging from another shares its row 0 with the other's last row "
+        "(Joins below): such knots are tied once, counted under \"knots tied\" in one piece, and "
+        "the bars along a seam are made once, with the piece they are counted in. Rope lengths "
+        "are the bars' lengths summed, without the rope a knot or a tie to a rail takes.\n\n"
+        "| id | name | rows x columns | closed | knots | knots tied | bars | rope (m) | mass (kg) "
+        "| bar length (m) | largest tension (N) | top | last row | seams |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const json& p : r["pieces"])
         md += "| " + num(p["id"]) + " | " + cell(p["name"].get<std::string>()) + " | " +
               num(p["rows"]) + " x " + num(p["columns"]) + " | " +
               (p["closed"].get<bool>() ? "yes" : "no") + " | " + num(p["knots"]) + " | " +
-              num(p["bars"]) + " | " + g6(p["rope_length"]) + " | " + g6(p["mass"]) + " | " +
+              num(p["knots_tied"]) + " | " + num(p["bars"]) + " | " + g6(p["rope_length"]) + " | " + g6(p["mass"]) + " | " +
               barLengthText(p) + " | " + g6(p["max_tension"]) + " | " +
-              cell(topText(p["top"], r["rails"])) + " | " +
-              cell(p["bottom"].is_null() ? "free" : railEdgeText(p["bottom"], r["rails"])) +
+              cell(topText(p["top"])) + " | " +
+              cell(p["bottom"].is_null() ? "free" : railEdgeText(p["bottom"])) +
               " | " + seamsText(p["seams"]) + " |\n";
     return md;
 }
@@ -172,12 +180,13 @@ std::string attachmentsMarkdown(const json& r) {
         if (rail["points"].empty())
             continue;
         md += "\n### Rail " + num(rail["id"]) + " (" + cell(rail["name"].get<std::string>()) +
-              ")\n\n| piece | row | column | t | position (m) | reaction (N) | magnitude (N) |\n"
-              "|---|---|---|---|---|---|---|\n";
+              ")\n\n| piece | row | column | t | along the rail (m) | position (m) | reaction (N) "
+              "| magnitude (N) |\n|---|---|---|---|---|---|---|---|\n";
         for (const json& p : rail["points"])
             md += "| " + num(p["piece"]) + " | " + num(p["row"]) + " | " + num(p["column"]) +
-                  " | " + g6(p["t"]) + " | " + vecText(p["position"]) + " | " +
-                  vecText(p["reaction"]) + " | " + g6(p["magnitude"]) + " |\n";
+                  " | " + g6(p["t"]) + " | " + metres(p["along"].get<double>()) + " | " +
+                  placeText(p["position"]) + " | " + vecText(p["reaction"]) + " | " +
+                  g6(p["magnitude"]) + " |\n";
     }
     return md;
 }
@@ -233,17 +242,18 @@ std::string reportMarkdown(const json& r) {
           (fb["within_tolerance"].get<bool>() ? "within" : "**not within**") + " the tolerance " +
           g6(fb["tolerance"]) + ". " + fb["note"].get<std::string>() + ".\n\n";
 
-    return md + piecesMarkdown(r) + railsMarkdown(r) + attachmentsMarkdown(r);
+    return md + piecesMarkdown(r) + joinsMarkdown(r) + barLengthsMarkdown(r) + railsMarkdown(r) +
+           attachmentsMarkdown(r);
 }
 
 std::string reportPiecesCsv(const json& r) {
     std::string csv =
         "id,name,rows,columns,closed,knots,bars,rope_length,mass,bar_axis,bar_min,bar_max,"
-        "bar_first,bar_last,max_tension,top,last_row\n";
+        "bar_first,bar_last,max_tension,top,last_row,knots_tied\n";
     for (const json& p : r["pieces"]) {
         double lo = 0, hi = 0;
         bool first = true;
-        for (const json& l : p["bar_lengths"]) {
+        for (const json& l : knottedLengths(p)) {
             const double v = l.get<double>();
             lo = first ? v : std::min(lo, v);
             hi = first ? v : std::max(hi, v);
@@ -254,15 +264,15 @@ std::string reportPiecesCsv(const json& r) {
                num(p["knots"]) + "," + num(p["bars"]) + "," + num(p["rope_length"]) + "," +
                num(p["mass"]) + "," + p["bar_axis"].get<std::string>() + "," + io::numberText(lo) +
                "," + io::numberText(hi) + "," + knottedEnds(p) + "," + num(p["max_tension"]) +
-               "," + csvField(topText(p["top"], r["rails"])) + "," +
-               csvField(p["bottom"].is_null() ? "free" : railEdgeText(p["bottom"], r["rails"])) +
-               "\n";
+               "," + csvField(topText(p["top"])) + "," +
+               csvField(p["bottom"].is_null() ? "free" : railEdgeText(p["bottom"])) + "," +
+               num(p["knots_tied"]) + "\n";
     }
     return csv;
 }
 
 std::string reportAttachmentsCsv(const json& r) {
-    std::string csv = "rail,piece,row,column,t,x,y,z,fx,fy,fz,magnitude\n";
+    std::string csv = "rail,piece,row,column,t,x,y,z,fx,fy,fz,magnitude,along\n";
     for (const json& rail : r["rails"])
         for (const json& p : rail["points"])
             csv += num(rail["id"]) + "," + num(p["piece"]) + "," + num(p["row"]) + "," +
@@ -270,7 +280,7 @@ std::string reportAttachmentsCsv(const json& r) {
                    num(p["position"]["y"]) + "," + num(p["position"]["z"]) + "," +
                    num(p["reaction"]["x"]) + "," +
                    num(p["reaction"]["y"]) + "," + num(p["reaction"]["z"]) + "," +
-                   num(p["magnitude"]) + "\n";
+                   num(p["magnitude"]) + "," + num(p["along"]) + "\n";
     return csv;
 }
 

@@ -135,6 +135,26 @@ TEST_CASE("open L-shaped polyline: length, positions, clamping", "[curve][polyli
     checkNear(param.pointAt(0.75), {3, 2, 0}, 1e-15);
     CHECK(param.nearestPosition({4, 2, 0}) == Approx(0.75).epsilon(1e-15));
     CHECK(param.length() == Approx(7.0).epsilon(1e-15));
+    // What a tape along the rail measures: 1.5 m to t = 0.25 and 5 m to t = 0.75 (3 + 2).
+    CHECK(param.distanceAlong(0.25) == Approx(1.5).epsilon(1e-15));
+    CHECK(param.distanceAlong(0.75) == Approx(5.0).epsilon(1e-15));
+    CHECK(arc.distanceAlong(0.75) == Approx(5.25).epsilon(1e-15));
+    CHECK(param.distanceAlong(1.5) == Approx(7.0).epsilon(1e-15)); // open: clamped to the end
+}
+
+TEST_CASE("distance along a spline rail under either sampling") {
+    // Quadratic Bezier on the x axis through (0), (1), (4): x(u) = 2u + 2u^2, 4 m long.
+    const std::vector<Vec3> control{{0, 0, 0}, {1, 0, 0}, {4, 0, 0}};
+    const Curve param = Curve::build(bspline(control, 2, false, Sampling::Parameter));
+    const Curve arc = Curve::build(bspline(control, 2, false, Sampling::ArcLength));
+    CHECK(param.distanceAlong(0.5) == Approx(1.5).epsilon(1e-12)); // x(0.5)
+    CHECK(param.distanceAlong(0.25) == Approx(0.625).epsilon(1e-12));
+    CHECK(param.distanceAlong(1.0) == Approx(4.0).epsilon(1e-12));
+    CHECK(arc.distanceAlong(0.5) == Approx(2.0).epsilon(1e-12));
+    // A closed rail wraps t: -0.25 is 0.75 of the way round a 2 x 2 square.
+    const Curve square = Curve::build(
+        polyline({{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}}, true, Sampling::Parameter));
+    CHECK(square.distanceAlong(-0.25) == Approx(6.0).epsilon(1e-15));
 }
 
 TEST_CASE("polyline: consecutive duplicate points add no segment", "[curve][polyline]") {

@@ -195,26 +195,26 @@ TEST_CASE("report as Markdown and CSV tables") {
     CHECK_THAT(md, Contains("| rope length | 4.5 m |"));
     CHECK_THAT(md, Contains("## Force balance"));
     CHECK_THAT(md, Contains("against the weight (0, 0, ")); // not "-0": the weight to carry
-    CHECK_THAT(md, Contains("| 1 | piece 1 | 4 x 3 | no | 12 | 15 | 4.5 |"));
+    CHECK_THAT(md, Contains("| 1 | piece 1 | 4 x 3 | no | 12 | 12 | 15 | 4.5 |"));
     CHECK_THAT(md, Contains("| 1 | bar | 0.8 | no | 3 |"));
 
     const std::string pieces = reportPiecesCsv(r);
     CHECK(pieces.rfind("id,name,rows,columns,closed,knots,bars,rope_length,mass,bar_axis,bar_min,"
-                       "bar_max,bar_first,bar_last,max_tension,top,last_row\n",
+                       "bar_max,bar_first,bar_last,max_tension,top,last_row,knots_tied\n",
                        0) == 0);
     CHECK(lineCount(pieces) == 2);
     CHECK_THAT(pieces, Contains("\n1,piece 1,4,3,0,12,15,"));
     CHECK_THAT(pieces, Contains(",column,0.3,0.3,0.3,0.3,"));
-    CHECK_THAT(pieces, Contains(",\"rail 1 (bar), from 0 m along it (t = 0)\",free\n"));
+    CHECK_THAT(pieces, Contains(",\"rail 1 (bar), from 0.0000 m along it (t = 0)\",free,12\n"));
     const std::string points = reportAttachmentsCsv(r);
-    CHECK(points.rfind("rail,piece,row,column,t,x,y,z,fx,fy,fz,magnitude\n", 0) == 0);
+    CHECK(points.rfind("rail,piece,row,column,t,x,y,z,fx,fy,fz,magnitude,along\n", 0) == 0);
     CHECK(lineCount(points) == 1 + 3);
     CHECK_THAT(points, Contains("\n1,1,0,2,1,"));
     // Every attachment point in the Markdown too, after the rails' sign convention.
     CHECK_THAT(md, Contains("the load on the rail is its opposite"));
     CHECK_THAT(md, Contains("### Rail 1 (bar)"));
-    CHECK_THAT(md, Contains("\n| 1 | 0 | 0 | 0 | (0, 0, 0) | ("));
-    CHECK_THAT(md, Contains("\n| 1 | 0 | 2 | 1 | (0.8, 0, 0) | ("));
+    CHECK_THAT(md, Contains("\n| 1 | 0 | 0 | 0 | 0.0000 | (0.0000, 0.0000, 0.0000) | ("));
+    CHECK_THAT(md, Contains("\n| 1 | 0 | 2 | 1 | 0.8000 | (0.8000, 0.0000, 0.0000) | ("));
 }
 
 TEST_CASE("the report gives bar lengths as they are knotted, first to last") {
@@ -257,7 +257,8 @@ TEST_CASE("the report gives bar lengths as they are knotted, first to last") {
     CHECK(between[3].get<double>() == Approx(0.375).epsilon(1e-14));
     CHECK_THAT(reportMarkdown(r),
                Contains("| 0.225 between rows 0 and 1 to 0.375 between rows 3 and 4 |"));
-    CHECK_THAT(reportPiecesCsv(r), Contains(",row,0.2,0.4,0.225,0.375,"));
+    // bar_min and bar_max are lengths bars have, not the rows' 0.2 and 0.4.
+    CHECK_THAT(reportPiecesCsv(r), Contains(",row,0.225,0.375,0.225,0.375,"));
 }
 
 TEST_CASE("the report says where split parts start on their rail and who makes a seam's bars") {
@@ -268,9 +269,9 @@ TEST_CASE("the report says where split parts start on their rail and who makes a
     const json r = buildReport(t.s, t.compiled);
     const double ring = r["rails"][0]["length"].get<double>();
     const std::string md = reportMarkdown(r);
-    CHECK_THAT(md, Contains("rail 1 (ring), from 0 m along it (t = 0)"));
+    CHECK_THAT(md, Contains("rail 1 (ring), from 0.0000 m along it (t = 0)"));
     char second[80];
-    std::snprintf(second, sizeof second, "rail 1 (ring), from %.6g m along it (t = 0.333333)",
+    std::snprintf(second, sizeof second, "rail 1 (ring), from %.4f m along it (t = 0.333333)",
                   ring / 3);
     CHECK_THAT(md, Contains(second));
     // Each seam column's 4 bars (5 rows) are made once: counted in one of the two parts, and
@@ -415,4 +416,72 @@ TEST_CASE("a shape relaxed under wind: the report's residual and force balance c
     REQUIRE(opened.shapeWind().has_value());
     CHECK(opened.shapeWind()->pressure == 0.5);
     CHECK(buildReport(opened)["force_balance"]["within_tolerance"] == true);
+}
+
+TEST_CASE("the report measures rail places as a tape along the rail does, to a tenth of a mm") {
+    // A rail sampled by parameter: segments of 1 m and 3 m each take half of t, so the five top
+    // knots (t = 0, 0.25, ..., 1) are 0, 0.5, 1, 2.5 and 4 m along it, not t x 4 m.
+    Sculpture s;
+    CurveSpec spec;
+    spec.points = {{0, 0, 5}, {1, 0, 5}, {4, 0, 5}};
+    spec.sampling = Sampling::Parameter;
+    const RailId rail = edit(s, [&](Sculpture& x) { return addRail(x, "beam", spec); });
+    edit(s, [&](Sculpture& x) { return attachToRail(x, {rail, 5, 0, 2, 1.0, 0, false}); });
+    const CompiledSculpture c = compileSculpture(s);
+    const json r = buildReport(s, c);
+    const json& points = r["rails"][0]["points"];
+    REQUIRE(points.size() == 5);
+    const double along[] = {0, 0.5, 1, 2.5, 4};
+    for (std::size_t i = 0; i < 5; ++i)
+        CHECK(points[i]["along"].get<double>() == Approx(along[i]).margin(1e-12));
+    CHECK(r["rails"][0]["sampling"] == "parameter");
+    CHECK_THAT(reportMarkdown(r), Contains("| 1 | 0 | 3 | 0.75 | 2.5000 | (2.5000, 0.0000, 5.0000)"));
+
+    // Site coordinates: 500 km east, 5,400 km north. Six significant digits would print the
+    // ring's knots 0.52 m apart at one place; a tenth of a millimetre tells every one apart.
+    Tube site = tubeWithChild(12, 5, 1.0, 0.4, {500000, 5400000, 0});
+    const json siteReport = buildReport(site.s, site.compiled);
+    const std::string md = reportMarkdown(siteReport);
+    for (const json& p : siteReport["rails"][0]["points"]) {
+        char place[96];
+        std::snprintf(place, sizeof place, "(%.4f, %.4f, %.4f)", p["position"]["x"].get<double>(),
+                      p["position"]["y"].get<double>(), p["position"]["z"].get<double>());
+        CHECK_THAT(md, Contains(place));
+    }
+}
+
+TEST_CASE("the report says how a child is knotted into its parent and every graded bar length") {
+    // The ring of 12 columns and 5 rows with its gear-2 child of 24 columns and 3 rows: the
+    // child's even knots of row 0 are the ring's last row (row 4), so the child ties 72 - 12.
+    Tube t = tubeWithChild(12, 5, 1.0, 0.4);
+    const json r = buildReport(t.s, t.compiled);
+    std::size_t tied = 0;
+    for (const json& p : r["pieces"])
+        tied += p["knots_tied"].get<std::size_t>();
+    CHECK(tied == r["knots"].get<std::size_t>());
+    CHECK(r["pieces"][1]["knots_tied"] == 60);
+    const std::string md = reportMarkdown(r);
+    CHECK_THAT(md, Contains("## Joins"));
+    CHECK_THAT(md, Contains("knot (0, c) of piece 2 with c a multiple of 2 is knot (4, c / 2) of "
+                            "piece 1; the knot between two of them is new"));
+    CHECK_THAT(md, Contains("It adds rows 1 to 2 below (60 knots tied)."));
+    CHECK_THAT(md, !Contains("## Bar lengths")); // one length everywhere: nothing to list
+
+    // A sheet split at column 12, its left part graded 0.25 at column 0 to 0.2 at column 12: a
+    // bar to the next column takes the mean of the two columns' lengths, 0.25 - 0.05 / 24 from
+    // column 0.
+    SheetNet graded = sheet(5, 25, 4.8, 0.3);
+    const PieceId left = edit(graded.s, [&](Sculpture& s) {
+        const PieceId part = netsculpt::split(s, graded.piece, 12).first;
+        setBarLength(s, part, 0, 0.25);
+        setBarLength(s, part, 12, 0.2);
+        return part;
+    });
+    graded.compiled = compileSculpture(graded.s);
+    const std::string gradedMd = reportMarkdown(buildReport(graded.s, graded.compiled));
+    CHECK_THAT(gradedMd, Contains("### Piece " + std::to_string(left.value) + " ("));
+    CHECK_THAT(gradedMd, Contains("), graded by column"));
+    CHECK_THAT(gradedMd, Contains("\n| 0 | 0.25 | 0.247917 |\n"));
+    CHECK_THAT(gradedMd, Contains("\n| 12 | 0.2 | - |\n"));
+    CHECK_THAT(gradedMd, !Contains("## Joins"));
 }

@@ -1,0 +1,168 @@
+// The report's sections for the net maker (ReportSections.h): the joins between pieces as
+// DESIGN.md "How pieces are joined" makes them, and every bar length of graded pieces.
+
+#include "io/ReportSections.h"
+
+#include <nlohmann/json.hpp>
+
+#include <stdexcept>
+#include <string>
+
+namespace netsculpt {
+
+namespace {
+
+using nlohmann::json;
+
+std::string integer(const json& v) {
+    return std::to_string(v.get<long long>());
+}
+
+const json& pieceOf(const json& report, const json& id) {
+    for (const json& p : report["pieces"])
+        if (p["id"] == id)
+            return p;
+    throw std::logic_error("report: no piece " + integer(id));
+}
+
+/// "piece 1 (tube)", or "pieces 1 (a), 4 (b) and 3 (c), taken in that order as one row".
+std::string parentsText(const json& report, const json& parents) {
+    std::string text = parents.size() == 1 ? "piece " : "pieces ";
+    for (std::size_t i = 0; i < parents.size(); ++i) {
+        const json& parent = pieceOf(report, parents[i]);
+        text += (i == 0 ? "" : i + 1 == parents.size() ? " and " : ", ") + integer(parent["id"]) +
+                " (" + parent["name"].get<std::string>() + ")";
+    }
+    return parents.size() == 1 ? text : text + ", taken in that order as one row";
+}
+
+/// "knot (19, X) of piece 1" for one parent, "knot X of that joined row" for several.
+std::string parentKnot(const json& report, const json& parents, const std::string& column) {
+    if (parents.size() != 1)
+        return "knot " + column + " of that joined row";
+    const json& parent = pieceOf(report, parents[0]);
+    return "knot (" + std::to_string(parent["rows"].get<int>() - 1) + ", " + column +
+           ") of piece " + integer(parent["id"]);
+}
+
+/// "c + 4" for a child whose column 0 is column 4 of the joined row, else "c".
+std::string columnText(int offset) {
+    return offset > 0 ? "c + " + std::to_string(offset) : "c";
+}
+
+/// "2 x c", "(c + 4) / 2": a column expression with a factor before or a divisor after it.
+std::string scaled(const std::string& column, const std::string& before, const std::string& after) {
+    const std::string term = column == "c" ? column : "(" + column + ")";
+    return before + term + after;
+}
+
+/// How row 0 of `piece` meets its parents' last row, by its gear (DESIGN.md).
+std::string gearText(const json& report, const json& piece) {
+    const json& top = piece["top"];
+    const json& parents = top["parents"];
+    const std::string id = integer(piece["id"]), column = columnText(top["offset"].get<int>());
+    const double gear = top["gear_value"].get<double>();
+    if (gear == 1)
+        return "its row 0 is the last row above it: knot (0, c) of piece " + id + " is " +
+               parentKnot(report, parents, column) + ".";
+    if (gear > 1) {
+        const int g = int(gear + 0.5);
+        std::string text = "knot (0, c) of piece " + id + " with " + column + " a multiple of " +
+                           std::to_string(g) + " is " +
+                           parentKnot(report, parents, scaled(column, "", " / " + std::to_string(g))) +
+                           "; " +
+                           (g == 2 ? "the knot between two of them is new, tied"
+                                   : "the two knots between two of them are new, each tied") +
+                           " by one bar to each of the two.";
+        if (g == 3)
+            text += " Both new knots hang from the same two knots, so they take one place.";
+        return text;
+    }
+    const int g = int(1 / gear + 0.5);
+    return "knot (0, c) of piece " + id + " is " +
+           parentKnot(report, parents, scaled(column, std::to_string(g) + " x ", "")) +
+           "; the other knots of that row keep only their bars up.";
+}
+
+std::string addedRowsText(const json& piece) {
+    const int rows = piece["rows"].get<int>();
+    const std::string tied = integer(piece["knots_tied"]) + " knots tied";
+    if (rows == 1)
+        return " It adds no row below (" + tied + ").";
+    return " It adds rows 1 to " + std::to_string(rows - 1) + " below (" + tied + ").";
+}
+
+/// One table of a column-graded piece: each column's bars and the bars to the next column.
+std::string columnLengths(const json& piece) {
+    const json& lengths = piece["bar_lengths"];
+    const std::size_t n = lengths.size();
+    const bool closed = piece["closed"].get<bool>();
+    std::string md = "| column | bars within the column (m) | bars to the next column (m) |\n"
+                     "|---|---|---|\n";
+    for (std::size_t c = 0; c < n; ++c) {
+        const bool hasNext = c + 1 < n || closed;
+        const double next = hasNext ? 0.5 * (lengths[c].get<double>() +
+                                             lengths[(c + 1) % n].get<double>())
+                                    : 0.0;
+        md += "| " + std::to_string(c) + " | " + g6(lengths[c].get<double>()) + " | " +
+              (hasNext ? g6(next) + (c + 1 == n ? " (to column 0)" : "") : "-") + " |\n";
+    }
+    return md;
+}
+
+std::string rowLengths(const json& piece) {
+    const json& lengths = piece["bar_lengths_between_rows"];
+    std::string md = "| rows | bars between them (m) |\n|---|---|\n";
+    for (std::size_t r = 0; r < lengths.size(); ++r)
+        md += "| " + std::to_string(r) + " to " + std::to_string(r + 1) + " | " +
+              g6(lengths[r].get<double>()) + " |\n";
+    return md;
+}
+
+bool graded(const json& piece) {
+    const json& lengths = piece["bar_lengths"];
+    for (const json& l : lengths)
+        if (l != lengths.front())
+            return true;
+    return false;
+}
+
+} // namespace
+
+std::string joinsMarkdown(const json& report) {
+    std::string md;
+    for (const json& piece : report["pieces"]) {
+        const json& top = piece["top"];
+        if (top["kind"] != "piece")
+            continue;
+        md += "- Piece " + integer(piece["id"]) + " (" + piece["name"].get<std::string>() +
+              ") hangs from " + parentsText(report, top["parents"]) + ", gear " +
+              top["gear"].get<std::string>() + ": " + gearText(report, piece) +
+              addedRowsText(piece) + "\n";
+    }
+    if (md.empty())
+        return md;
+    return "\n## Joins\n\nKnots are (row, column) of their piece; c counts the child's columns "
+           "from 0.\n\n" +
+           md;
+}
+
+std::string barLengthsMarkdown(const json& report) {
+    std::string md;
+    for (const json& piece : report["pieces"]) {
+        if (!graded(piece))
+            continue;
+        const bool byRow = piece["bar_axis"] == "row";
+        md += "\n### Piece " + integer(piece["id"]) + " (" + piece["name"].get<std::string>() +
+              "), graded by " + (byRow ? "row" : "column") + "\n\n" +
+              (byRow ? rowLengths(piece) : columnLengths(piece));
+    }
+    if (md.empty())
+        return md;
+    return "\n## Bar lengths\n\nEvery length the bars of a graded piece are knotted to, from "
+           "knot centre to knot centre: a bar takes the mean of the lengths of the two columns "
+           "(or rows) it joins.\n" +
+           md;
+}
+
+} // namespace netsculpt
