@@ -213,7 +213,7 @@ TEST_CASE("replay, to-lua, relax, export and report on a journal", "[cli]") {
 
     const Ran replay = runCli("replay " + quoted(journal) + " --out " + quoted(dir / "replayed"));
     CHECK(replay.exitCode == 0);
-    CHECK_THAT(replay.output, Contains("1 rails, 2 pieces") && Contains("hash " + hash));
+    CHECK_THAT(replay.output, Contains("1 rail, 2 pieces") && Contains("hash " + hash));
     CHECK(fs::is_regular_file(dir / "replayed" / "small.netj"));
     CHECK(fs::file_size(journal) == journalBytes); // read, never written
 

@@ -51,13 +51,17 @@ std::string hashText(std::uint64_t hash) {
     return text;
 }
 
+/// "1 rail", "3 rails".
+std::string counted(std::size_t count, const std::string& noun) {
+    return std::to_string(count) + " " + noun + (count == 1 ? "" : "s");
+}
+
 /// "3 rails, 5 pieces, 12000 knots, 23000 bars".
 std::string summary(const Document& doc) {
     const auto& s = doc.sculpture();
     const auto& system = doc.compiled().system;
-    return std::to_string(s.rails.size()) + " rails, " + std::to_string(s.pieces.size()) +
-           " pieces, " + std::to_string(system.knotCount()) + " knots, " +
-           std::to_string(system.barCount()) + " bars";
+    return counted(s.rails.size(), "rail") + ", " + counted(s.pieces.size(), "piece") + ", " +
+           counted(system.knotCount(), "knot") + ", " + counted(system.barCount(), "bar");
 }
 
 lua::ScriptOptions scriptOptions(const RunArgs& a, const fs::path& out, ProgressLine& progress) {
