@@ -65,117 +65,15 @@ void appendBulge(std::vector<Vec3>& out, const Vec3& p1, const Vec3& p2, double 
 
 namespace {
 
-std::string pointText(const Vec3& p) {
-    return concat({"(", numberText(p.x), ", ", numberText(p.y), ", ", numberText(p.z), ")"});
-}
-
-} // namespace
-
-std::vector<SourcedCurve> joinChains(const std::string& file, const std::vector<ChainPart>& parts) {
-    const int n = int(parts.size());
-    if (n == 0)
-        return {};
-    Vec3 lo = parts[0].points[0], hi = lo;
-    for (const auto& part : parts)
-        for (const Vec3& p : part.points) {
-            lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-            hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-        }
-    const double tolerance = 1e-6 * distance(lo, hi);
-    const auto end = [&](int node) -> const Vec3& {
-        const auto& pts = parts[std::size_t(node / 2)].points;
-        return node % 2 == 0 ? pts.front() : pts.back();
-    };
-    // Ends are nodes 2 * part + (0 = start, 1 = end). Every end's partners: ends of other parts
-    // (or the other end of the same part) nearby.
-    std::vector<std::vector<int>> partners(std::size_t(2 * n));
-    for (int a = 0; a < 2 * n; ++a)
-        for (int b = a + 1; b < 2 * n; ++b)
-            if (distance(end(a), end(b)) <= tolerance) {
-                partners[std::size_t(a)].push_back(b);
-                partners[std::size_t(b)].push_back(a);
-            }
-    for (int a = 0; a < 2 * n; ++a) {
-        const auto& list = partners[std::size_t(a)];
-        if (list.size() < 2)
-            continue;
-        std::string names = parts[std::size_t(a / 2)].entity->describe();
-        for (int b : list)
-            names += ", " + parts[std::size_t(b / 2)].entity->describe();
-        throw UserError(file + ": " + std::to_string(list.size() + 1) + " ends meet at " +
-                        pointText(end(a)) + " (" + names +
-                        "); a rail cannot branch: put the branches on different layers");
-    }
-    const auto partner = [&](int node) {
-        return partners[std::size_t(node)].empty() ? -1 : partners[std::size_t(node)][0];
-    };
-
-    std::vector<char> used(std::size_t(n), 0);
-    std::vector<SourcedCurve> chains;
-    for (int first = 0; first < n; ++first) {
-        if (used[std::size_t(first)])
-            continue;
-        used[std::size_t(first)] = 1;
-        // (part, forward) in chain order: walk on from the first part's end, then back from its
-        // start.
-        std::vector<std::pair<int, bool>> forward{{first, true}}, backward;
-        bool closed = false;
-        for (int node = 2 * first + 1;;) {
-            const int next = partner(node);
-            if (next < 0)
-                break;
-            if (next / 2 == first) {
-                closed = true;
-                break;
-            }
-            used[std::size_t(next / 2)] = 1;
-            forward.push_back({next / 2, next % 2 == 0});
-            node = next ^ 1;
-        }
-        if (!closed)
-            for (int node = 2 * first;;) {
-                const int next = partner(node);
-                if (next < 0 || next / 2 == first)
-                    break;
-                used[std::size_t(next / 2)] = 1;
-                backward.push_back({next / 2, next % 2 == 1});
-                node = next ^ 1;
-            }
-        std::vector<std::pair<int, bool>> order(backward.rbegin(), backward.rend());
-        order.insert(order.end(), forward.begin(), forward.end());
-        std::vector<Vec3> points;
-        for (const auto& [part, along] : order) {
-            std::vector<Vec3> pts = parts[std::size_t(part)].points;
-            if (!along)
-                std::reverse(pts.begin(), pts.end());
-            points.insert(points.end(), pts.begin() + (points.empty() ? 0 : 1), pts.end());
-        }
-        if (closed && points.size() > 2)
-            points.pop_back();
-        const DxfEntity& e = *parts[std::size_t(first)].entity;
-        CurveSpec spec;
-        spec.points = std::move(points);
-        spec.closed = closed;
-        const std::string where = order.size() == 1
-                                      ? e.describe()
-                                      : "the chain of " + std::to_string(order.size()) +
-                                            " entities starting at " + e.describe();
-        chains.push_back({{e.railName(), std::move(spec)}, where, e.line});
-    }
-    return chains;
-}
-
-namespace {
-
 bool near(const Vec3& a, const Vec3& b, double scale) {
     return distance(a, b) <= 1e-9 * scale;
 }
 
 } // namespace
 
-SourcedCurve splineCurve(const std::string& file, const DxfSpline& s) {
+SourcedCurve splineCurve(const std::string& file, const DxfSpline& s, const std::string& name,
+                         const std::string& where) {
     const DxfEntity& e = *s.entity;
-    const std::string where = e.describe();
     CurveSpec spec;
     spec.spline = true;
     spec.degree = s.degree;
@@ -186,7 +84,7 @@ SourcedCurve splineCurve(const std::string& file, const DxfSpline& s) {
         spec.weights = s.weights;
     const bool closed = s.flags & 1;
     if (!closed || spec.points.empty())
-        return {{e.railName(), std::move(spec)}, where};
+        return {{name, std::move(spec)}, where};
 
     const std::size_t n = spec.points.size(), p = std::size_t(std::max(0, s.degree));
     double scale = 0;
@@ -201,7 +99,7 @@ SourcedCurve splineCurve(const std::string& file, const DxfSpline& s) {
         if (!spec.weights.empty())
             spec.weights.resize(n - p);
         spec.closed = true;
-        return {{e.railName(), std::move(spec)}, where};
+        return {{name, std::move(spec)}, where};
     }
     const auto& k = spec.knots;
     const bool clamped = k.size() == n + p + 1 && k.size() > 2 * p + 2 &&
@@ -226,7 +124,7 @@ SourcedCurve splineCurve(const std::string& file, const DxfSpline& s) {
     } catch (const UserError& error) {
         throw UserError(file + ": " + where + ": " + error.what());
     }
-    return {{e.railName(), std::move(poly)}, where + " (sampled: a closed clamped spline)"};
+    return {{name, std::move(poly)}, where + " (sampled: a closed clamped spline)"};
 }
 
 } // namespace netsculpt::io

@@ -1,6 +1,6 @@
 #pragma once
 // Geometry of DXF entities that rails are made of: object coordinate systems, arcs (ARC,
-// CIRCLE, polyline bulges) sampled finely, and LINE/ARC chains joined end to end.
+// CIRCLE, polyline bulges) sampled finely, splines.
 
 #include "geometry/Vec3.h"
 #include "io/DxfScan.h"
@@ -48,19 +48,9 @@ struct DxfSpline {
 /// last `degree` control points repeat the first ones (what ezdxf and most CAD programs write),
 /// unwrapped into CurveSpec's closed form; or a clamped spline whose ends coincide, sampled into
 /// a closed polyline of 64 points per knot span (CurveSpec has no closed clamped form). UserError
-/// for a closed spline that is neither.
-SourcedCurve splineCurve(const std::string& file, const DxfSpline& spline);
-
-/// A LINE or ARC of a chain, its points in world coordinates (file units).
-struct ChainPart {
-    std::vector<Vec3> points;
-    const DxfEntity* entity = nullptr;
-};
-
-/// Joins the parts of one layer end to end where ends lie within 1e-6 of the layer's extent
-/// (its bounding box diagonal): each chain becomes one rail, closed when its ends meet, named
-/// after its first part in file order and running in that part's direction. UserError when
-/// three or more ends meet (a rail cannot branch).
-std::vector<SourcedCurve> joinChains(const std::string& file, const std::vector<ChainPart>& parts);
+/// for a closed spline that is neither. `name` and `where` are the rail's name and where it is
+/// for messages.
+SourcedCurve splineCurve(const std::string& file, const DxfSpline& spline, const std::string& name,
+                         const std::string& where);
 
 } // namespace netsculpt::io

@@ -1,22 +1,23 @@
-// DXF rails through dxflib (Import.h): a DL_CreationAdapter collects SPLINE, LWPOLYLINE,
-// POLYLINE, LINE, ARC and CIRCLE entities of model space; DxfScan has checked the syntax first.
+// DXF rails (Import.h): the text decoded (DxfText), its syntax checked (DxfScan), read by dxflib
+// (DxfCollector), block references placed (DxfBlocks); here the units, the layers that are read,
+// LINE/ARC chains, and the messages for a drawing without rails.
 
 #include "geometry/Curve.h"
-#include "io/DxfGeometry.h"
-#include "io/DxfScan.h"
+#include "io/Chains.h"
+#include "io/DxfBlocks.h"
+#include "io/DxfCollector.h"
+#include "io/DxfText.h"
 #include "io/ImportDetail.h"
 #include "io/IoText.h"
 #include "model/Error.h"
 
-#include <dxflib/dl_creationadapter.h>
-#include <dxflib/dl_dxf.h>
-
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <map>
-#include <new>
 #include <optional>
+#include <set>
 
 namespace netsculpt::io {
 
@@ -55,209 +56,6 @@ constexpr std::array<DxfUnit, 24> kDxfUnits{{
     {24, "US survey miles", 6336000.0 / 3937.0},
 }};
 
-struct Polyline {
-    const DxfEntity* entity = nullptr;
-    int flags = 0;
-    bool light = false; ///< LWPOLYLINE (OCS, elevation) rather than POLYLINE
-    Ocs ocs;
-    double elevation = 0;
-    std::vector<Vec3> vertices; ///< x, y, z as read; bulge in `bulges`
-    std::vector<double> bulges;
-};
-
-class Collector final : public DL_CreationAdapter {
-  public:
-    Collector(const std::string& file, const DxfScan& scan) : file_(file), scan_(scan) {}
-
-    std::optional<int> insunits;
-    std::vector<std::pair<std::size_t, SourcedCurve>> curves; // (entity line, curve)
-    std::map<std::string, std::vector<ChainPart>> chains;     // by layer
-    std::vector<DxfSpline> splines;
-
-    void processCodeValuePair(unsigned int code, const std::string&) override {
-        const std::size_t line = 2 * groups_ + 1;
-        ++groups_;
-        if (code == 0) {
-            finished_ = current_;
-            current_ = line;
-        }
-    }
-    void setVariableInt(const std::string& key, int value, int) override {
-        if (key == "$INSUNITS")
-            insunits = value;
-    }
-
-    void addLine(const DL_LineData& d) override {
-        if (const DxfEntity* e = entity())
-            chains[e->layer].push_back({{{d.x1, d.y1, d.z1}, {d.x2, d.y2, d.z2}}, e});
-    }
-    void addArc(const DL_ArcData& d) override {
-        const DxfEntity* e = entity();
-        if (!e)
-            return;
-        checkRadius(*e, d.radius);
-        // Each angle is reduced on its own: the difference of two finite angles overflows
-        // (1.7e308 and -1.7e308 degrees), and an infinite one left the sweep NaN.
-        const double start = std::fmod(d.angle1, 360.0);
-        double sweep = std::fmod(std::fmod(d.angle2, 360.0) - start, 360.0);
-        if (sweep <= 0)
-            sweep += 360.0;
-        const double a0 = start * kRadiansPerDegree;
-        const Vec3 centre{d.cx, d.cy, d.cz};
-        std::vector<Vec3> pts{
-            {d.cx + d.radius * std::cos(a0), d.cy + d.radius * std::sin(a0), d.cz}};
-        appendArc(pts, centre, d.radius, a0, sweep * kRadiansPerDegree);
-        const Ocs ocs = extrusion(*e);
-        for (Vec3& p : pts)
-            p = ocs.toWorld(p);
-        chains[e->layer].push_back({std::move(pts), e});
-    }
-    void addCircle(const DL_CircleData& d) override {
-        const DxfEntity* e = entity();
-        if (!e)
-            return;
-        checkRadius(*e, d.radius);
-        std::vector<Vec3> pts{{d.cx + d.radius, d.cy, d.cz}};
-        appendArc(pts, {d.cx, d.cy, d.cz}, d.radius, 0, 2 * kPi);
-        pts.pop_back(); // the closing point repeats the first
-        const Ocs ocs = extrusion(*e);
-        for (Vec3& p : pts)
-            p = ocs.toWorld(p);
-        CurveSpec spec;
-        spec.points = std::move(pts);
-        spec.closed = true;
-        curves.push_back({e->line, {{e->railName(), std::move(spec)}, e->describe()}});
-    }
-    void addEllipse(const DL_EllipseData&) override {
-        if (const DxfEntity* e = entity())
-            fail(*e, "ELLIPSE is not read as a rail; convert it to a SPLINE or a POLYLINE in the "
-                     "CAD program");
-    }
-
-    void addPolyline(const DL_PolylineData& d) override {
-        const DxfEntity* e = entity();
-        if (!e)
-            return;
-        polyline_ = Polyline{
-            e,  d.flags, e->type == "LWPOLYLINE", extrusion(*e), getExtrusion()->getElevation(),
-            {}, {}};
-        if (!polyline_->light && (d.flags & (16 | 64)))
-            fail(*e, "is a polygon or polyface mesh, not a curve; rails are curves");
-        if (!polyline_->light && (d.flags & (2 | 4)))
-            fail(*e, "is a curve-fit or spline-fit POLYLINE; convert it to a SPLINE (or explode "
-                     "it) in the CAD program");
-    }
-    void addVertex(const DL_VertexData& d) override {
-        if (!polyline_)
-            return;
-        polyline_->vertices.push_back({d.x, d.y, d.z});
-        polyline_->bulges.push_back(d.bulge);
-    }
-    void endSequence() override { finishPolyline(); }
-
-    void addSpline(const DL_SplineData& d) override {
-        const DxfEntity* e = entity();
-        spline_.reset();
-        if (!e)
-            return;
-        // dxflib keeps the counts of the previous SPLINE when one is missing: the scan's counts
-        // say how many values this entity really holds.
-        if (e->count[10] == 0 && e->count[11] > 0)
-            fail(*e,
-                 "is defined by fit points only; rails need control points (in the CAD program, "
-                 "convert the spline's fit points to control points)");
-        if (e->count[10] == 0)
-            fail(*e, "has no control points");
-        spline_ = DxfSpline{e, int(d.degree), d.flags, {}, {}, {}};
-    }
-    void addControlPoint(const DL_ControlPointData& d) override {
-        if (!spline_ || int(spline_->control.size()) == spline_->entity->count[10])
-            return;
-        spline_->control.push_back({d.x, d.y, d.z});
-        spline_->weights.push_back(d.w);
-    }
-    void addKnot(const DL_KnotData& d) override {
-        if (spline_ && int(spline_->knots.size()) < spline_->entity->count[40])
-            spline_->knots.push_back(d.k);
-    }
-    void endEntity() override {
-        if (polyline_ && polyline_->light)
-            finishPolyline();
-        if (spline_) {
-            splines.push_back(std::move(*spline_));
-            spline_.reset();
-        }
-    }
-
-  private:
-    static constexpr double kPi = 3.14159265358979323846;
-    static constexpr double kRadiansPerDegree = kPi / 180.0;
-    const std::string& file_;
-    const DxfScan& scan_;
-    std::size_t groups_ = 0, current_ = 0, finished_ = 0;
-    std::optional<Polyline> polyline_;
-    std::optional<DxfSpline> spline_;
-
-    [[noreturn]] void fail(const DxfEntity& e, const std::string& what) const {
-        throw UserError(file_ + ": " + e.describe() + ": " + what);
-    }
-    /// The entity dxflib is handing over, or null when it is not a model-space entity of the
-    /// ENTITIES section (block definitions, paper space).
-    const DxfEntity* entity() const {
-        const DxfEntity* e = scan_.at(finished_);
-        return e && !e->paperSpace ? e : nullptr;
-    }
-    void checkRadius(const DxfEntity& e, double r) const {
-        if (!(r > 0))
-            fail(e, "radius " + numberText(r) + " must be > 0");
-    }
-    Ocs extrusion(const DxfEntity& e) {
-        const DL_Extrusion* x = getExtrusion();
-        const Vec3 n{x->getDirection()[0], x->getDirection()[1], x->getDirection()[2]};
-        if (!n.isFinite() || n == Vec3{0, 0, 0})
-            fail(e, "has a zero extrusion direction (group codes 210/220/230)");
-        return ocsOf(n);
-    }
-    void finishPolyline() {
-        if (!polyline_)
-            return;
-        Polyline p = std::move(*polyline_);
-        polyline_.reset();
-        const bool closed = p.flags & 1;
-        const bool world = !p.light && (p.flags & 8); // a 3D POLYLINE: WCS vertices, no bulges
-        if (p.vertices.empty())
-            fail(*p.entity, "has no vertices");
-        std::vector<Vec3> pts;
-        const std::size_t n = p.vertices.size();
-        for (std::size_t i = 0; i < n; ++i) {
-            Vec3 v = p.vertices[i];
-            if (!world)
-                v.z = p.elevation;
-            if (i == 0)
-                pts.push_back(v);
-            if (i + 1 == n && !closed)
-                break;
-            Vec3 next = p.vertices[(i + 1) % n];
-            if (!world)
-                next.z = p.elevation;
-            if (world)
-                pts.push_back(next);
-            else
-                appendBulge(pts, v, next, p.bulges[i]);
-        }
-        if (closed)
-            pts.pop_back(); // the closing segment's end is the first vertex
-        if (!world)
-            for (Vec3& v : pts)
-                v = p.ocs.toWorld(v);
-        CurveSpec spec;
-        spec.points = std::move(pts);
-        spec.closed = closed;
-        curves.push_back(
-            {p.entity->line, {{p.entity->railName(), std::move(spec)}, p.entity->describe()}});
-    }
-};
-
 double fileUnits(const std::string& file, const std::optional<int>& insunits,
                  const ImportOptions& options) {
     const int code = insunits.value_or(0);
@@ -291,46 +89,135 @@ double fileUnits(const std::string& file, const std::optional<int>& insunits,
     return it->metres;
 }
 
+
+/// ASCII lower case: DXF layer names are compared without case, as CAD programs do.
+std::string folded(std::string text) {
+    std::transform(text.begin(), text.end(), text.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return text;
+}
+
+std::string listed(const std::vector<std::string>& items) {
+    std::string text;
+    for (const auto& item : items)
+        text += (text.empty() ? "" : ", ") + item;
+    return text;
+}
+
+/// Which layers are read: those of ImportOptions::layers when given (checked against the
+/// drawing's), else every layer that is drawn: not frozen, not off, not Defpoints.
+class LayerChoice {
+  public:
+    LayerChoice(const std::string& file, const DxfScan& scan, const std::vector<std::string>& asked) {
+        std::set<std::string> names; // the LAYER table's and those entities name
+        for (const DxfLayer& layer : scan.layers) {
+            names.insert(layer.name);
+            if (layer.frozen())
+                frozen_.insert(folded(layer.name));
+            if (layer.off())
+                off_.insert(folded(layer.name));
+        }
+        for (const DxfEntity& e : scan.entities)
+            names.insert(e.layer);
+        std::set<std::string> known;
+        for (const auto& name : names)
+            known.insert(folded(name));
+        for (const auto& name : asked) {
+            if (!known.count(folded(name)))
+                throw UserError(file + ": layers names the layer " + quoted(name, 80) +
+                                ", which the drawing does not have; its layers are " +
+                                listed({names.begin(), names.end()}));
+            asked_.insert(folded(name));
+        }
+    }
+
+    bool reads(const Placed& p) {
+        if (!asked_.empty()) {
+            bool listed = asked_.count(folded(p.layer)) > 0;
+            for (const auto& layer : p.insertLayers)
+                listed = listed || asked_.count(folded(layer)) > 0;
+            return listed;
+        }
+        const std::string layer = folded(p.layer);
+        bool hidden = frozen_.count(layer) || off_.count(layer) || layer == "defpoints";
+        for (const auto& outer : p.insertLayers)
+            hidden = hidden || frozen_.count(folded(outer));
+        if (hidden)
+            skipped_.insert(p.layer);
+        return !hidden;
+    }
+    /// The layers of entities reads() left out because they are not drawn.
+    const std::set<std::string>& skipped() const { return skipped_; }
+
+  private:
+    std::set<std::string> frozen_, off_, asked_, skipped_;
+};
+
+/// Why a drawing gave no rails: what it holds instead.
+[[noreturn]] void refuseEmpty(const std::string& file, const DxfScan& scan,
+                              const LayerChoice& layers) {
+    std::map<std::string, int> model, paper;
+    for (const auto& e : scan.entities)
+        if (e.block.empty())
+            ++(e.paperSpace ? paper : model)[e.type];
+    const auto counts = [](const std::map<std::string, int>& types) {
+        std::string seen;
+        for (const auto& [type, count] : types)
+            seen += (seen.empty() ? "" : ", ") + std::to_string(count) + " " + type;
+        return seen;
+    };
+    std::string what = file + ": holds no rails (SPLINE, LWPOLYLINE, POLYLINE, LINE, ARC, CIRCLE "
+                              "or a block reference of them in model space)";
+    if (!layers.skipped().empty())
+        throw UserError(what + "; its rails are on layers that are not drawn (frozen, off or "
+                               "Defpoints): " +
+                        listed({layers.skipped().begin(), layers.skipped().end()}) +
+                        "; name them in layers = {...} to read them");
+    if (model.empty() && !paper.empty())
+        throw UserError(what + "; its only entities (" + counts(paper) +
+                        ") are in paper space (a layout); move them to model space in the CAD "
+                        "program");
+    throw UserError(what + (model.empty() ? std::string("; it has no entities")
+                                          : "; it has " + counts(model)));
+}
+
 } // namespace
 
 std::vector<NamedCurve> importDxf(const std::filesystem::path& path, const ImportOptions& options) {
     const std::string file = displayName(path);
-    const DxfScan scan = scanDxf(file, readWholeFile(path));
-    Collector collector(file, scan);
-    DL_Dxf dxf;
-    try {
-        if (!dxf.in(path.string(), &collector))
-            throw UserError(file + ": cannot open the file");
-    } catch (const std::bad_alloc&) {
-        throw UserError(file + ": the drawing declares more data than can be held in memory");
-    }
-    const double metres = fileUnits(file, collector.insunits, options);
+    const std::string text = decodeDxfText(file, readWholeFile(path));
+    const DxfScan scan = scanDxf(file, text);
+    const DxfDrawing drawing = collectDxf(file, scan, text);
+    const double metres = fileUnits(file, drawing.insunits, options);
+    LayerChoice layers(file, scan, options.layers);
+    const PlacedDrawing placed = placeDrawing(file, drawing);
 
-    std::vector<std::pair<std::size_t, SourcedCurve>> all = std::move(collector.curves);
-    for (const DxfSpline& s : collector.splines)
-        all.push_back({s.entity->line, splineCurve(file, s)});
-    for (const auto& [layer, parts] : collector.chains) {
-        for (auto& chain : joinChains(file, parts))
-            all.push_back({chain.order, std::move(chain)});
-    }
-    if (all.empty()) {
-        std::map<std::string, int> types;
-        for (const auto& e : scan.entities)
-            ++types[e.type];
-        std::string seen;
-        for (const auto& [type, count] : types)
-            seen += (seen.empty() ? "" : ", ") + std::to_string(count) + " " + type;
-        throw UserError(
-            file +
-            ": holds no rails (SPLINE, LWPOLYLINE, POLYLINE, LINE, ARC or CIRCLE in model space)" +
-            (seen.empty() ? std::string("; it has no entities") : "; it has " + seen));
-    }
+    std::vector<SourcedCurve> all;
+    for (const auto& [p, spec] : placed.curves)
+        if (layers.reads(p))
+            all.push_back({{p.name, spec}, p.where, p.order});
+    for (const auto& [p, spline] : placed.splines)
+        if (layers.reads(p)) {
+            checkCoordinates(file, p.where, spline.control, metres);
+            SourcedCurve curve = splineCurve(file, spline, p.name, p.where);
+            curve.order = p.order;
+            all.push_back(std::move(curve));
+        }
+    std::map<std::pair<std::string, std::string>, std::vector<ChainPart>> chains;
+    for (const auto& [p, points] : placed.parts)
+        if (layers.reads(p)) {
+            checkCoordinates(file, p.where, points, metres);
+            chains[{p.group, p.layer}].push_back({points, p.name, p.where, p.order});
+        }
+    for (auto& [key, parts] : chains)
+        for (auto& chain : joinChains(file, std::move(parts),
+                                      "put the branches on different layers"))
+            all.push_back(std::move(chain));
+    if (all.empty())
+        refuseEmpty(file, scan, layers);
     std::stable_sort(all.begin(), all.end(),
-                     [](const auto& a, const auto& b) { return a.first < b.first; });
-    std::vector<SourcedCurve> curves;
-    for (auto& [line, curve] : all)
-        curves.push_back(std::move(curve));
-    return finishRails(file, std::move(curves), metres);
+                     [](const auto& a, const auto& b) { return a.order < b.order; });
+    return finishRails(file, std::move(all), metres);
 }
 
 } // namespace netsculpt::io

@@ -107,6 +107,10 @@ class Scanner {
     std::string object_;                        // type of the current object (entity, table entry)
     std::size_t objectLine_ = 0;                // the line of its "0" group code
     std::array<std::size_t, 100> countLines_{}; // line of each allocated count it gave; 0 = none
+    bool inBlock_ = false;                      // between BLOCK and ENDBLK
+    std::string block_;                         // the current block's name
+    std::size_t blockEntities_ = 0, modelEntities_ = 0;
+    DxfLayer layer_; // the LAYER table entry being read
 
     [[noreturn]] void fail(std::size_t line, const std::string& what) const {
         throw UserError(file_ + ": line " + std::to_string(line) + ": " + what);
@@ -167,8 +171,28 @@ class Scanner {
             fail(codeLine, "group code " + std::to_string(c) +
                                " outside any SECTION; expected '0 SECTION' or '0 EOF'");
         checkAllocatedCount(codeLine + 1, c, value);
-        if (section_ == "ENTITIES" && inEntity_)
+        if (inEntity_)
             entityValue(codeLine + 1, c, value);
+        else if (object_ == "BLOCK" && c == 2 && block_.empty())
+            block_ = std::string(trim(value));
+        else if (object_ == "LAYER" && section_ == "TABLES")
+            layerValue(c, value);
+    }
+
+    /// Group 2 (name), 70 (flags), 62 (colour) of a LAYER table entry.
+    void layerValue(int c, std::string_view value) {
+        if (c == 2)
+            layer_.name = std::string(trim(value));
+        else if (c == 70)
+            layer_.flags = int(parseInteger(value).value_or(0));
+        else if (c == 62)
+            layer_.colour = parseInteger(value).value_or(7);
+    }
+
+    void finishObject() {
+        if (object_ == "LAYER" && section_ == "TABLES" && !layer_.name.empty())
+            out_.layers.push_back(layer_);
+        layer_ = DxfLayer();
     }
 
     void zero(std::size_t line, std::string_view value) {
@@ -184,10 +208,12 @@ class Scanner {
             }
             return;
         }
+        finishObject();
+        finishEntity();
         if (value == "ENDSEC") {
-            finishEntity();
             section_.clear();
             object_.clear();
+            inBlock_ = false;
             return;
         }
         if (value == "SECTION" || value == "EOF")
@@ -196,20 +222,26 @@ class Scanner {
         object_ = std::string(value);
         objectLine_ = line;
         countLines_.fill(0);
-        if (section_ != "ENTITIES")
+        if (section_ == "BLOCKS" && (value == "BLOCK" || value == "ENDBLK")) {
+            inBlock_ = value == "BLOCK";
+            block_.clear();
+            blockEntities_ = 0;
             return;
-        finishEntity();
+        }
+        if (section_ != "ENTITIES" && !(section_ == "BLOCKS" && inBlock_))
+            return;
         entity_ = DxfEntity();
         entity_.type = std::string(value);
         entity_.line = line;
-        entity_.index = out_.entities.size();
+        entity_.block = section_ == "BLOCKS" ? block_ : std::string();
+        entity_.index = section_ == "BLOCKS" ? blockEntities_++ : modelEntities_++;
         inEntity_ = true;
     }
 
     /// "LWPOLYLINE on layer R (line 5)" in ENTITIES, "LEADER in the BLOCKS section (line 9)"
     /// elsewhere.
     std::string describeObject() const {
-        if (section_ == "ENTITIES" && inEntity_)
+        if (inEntity_)
             return entity_.describe();
         return object_ + " in the " + section_ + " section (line " + std::to_string(objectLine_) +
                ")";
@@ -319,11 +351,16 @@ std::string DxfEntity::describe() const {
     std::string text = type;
     if (!handle.empty())
         text += " " + handle;
-    return text + " on layer " + layer + " (line " + std::to_string(line) + ")";
+    text += " on layer " + layer + " (line " + std::to_string(line) + ")";
+    return block.empty() ? text : text + " in block " + block;
+}
+
+std::string DxfEntity::handleOrIndex() const {
+    return handle.empty() ? concat({"#", std::to_string(index + 1)}) : handle;
 }
 
 std::string DxfEntity::railName() const {
-    return concat({layer, ":", handle.empty() ? concat({"#", std::to_string(index + 1)}) : handle});
+    return concat({layer, ":", handleOrIndex()});
 }
 
 DxfScan scanDxf(const std::string& file, const std::string& text) {

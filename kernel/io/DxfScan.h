@@ -19,7 +19,8 @@ struct DxfEntity {
     std::string handle;      ///< group 5 as written; empty when the file has none
     std::string layer = "0"; ///< group 8
     bool paperSpace = false; ///< group 67 = 1
-    std::size_t index = 0;   ///< position among the ENTITIES (0-based)
+    std::string block;       ///< the block definition holding it; empty in the ENTITIES section
+    std::size_t index = 0;   ///< position among the ENTITIES, or in its block (0-based)
     /// How many groups of code c (< 100) the entity holds: 10 = control points / vertices,
     /// 40 = knots, 41 = weights, 11 = fit points.
     std::array<int, 100> count{};
@@ -28,14 +29,26 @@ struct DxfEntity {
 
     DxfEntity() { integer.fill(-1); }
     long long declared(int code) const { return integer[std::size_t(code - 60)]; }
-    /// "SPLINE 2F on layer RAILS (line 2074)" — for messages.
+    /// "SPLINE 2F on layer RAILS (line 2074)" — for messages ("... in block RING" in a block).
     std::string describe() const;
-    /// "RAILS:2F", or "RAILS:#N" (N = index + 1) when the file has no handles.
+    /// "2F", or "#N" (N = index + 1) when the file has no handles.
+    std::string handleOrIndex() const;
+    /// "RAILS:2F", or "RAILS:#N" when the file has no handles.
     std::string railName() const;
 };
 
+/// An entry of the LAYER table.
+struct DxfLayer {
+    std::string name;
+    int flags = 0;       ///< group 70: 1 = frozen
+    long long colour = 7; ///< group 62: negative = the layer is off
+    bool frozen() const { return flags & 1; }
+    bool off() const { return colour < 0; }
+};
+
 struct DxfScan {
-    std::vector<DxfEntity> entities;           ///< the ENTITIES section, in file order
+    std::vector<DxfEntity> entities; ///< the ENTITIES section, then blocks' entities; file order
+    std::vector<DxfLayer> layers;    ///< the LAYER table
     std::map<std::size_t, std::size_t> byLine; ///< start line -> index into entities
     std::size_t lines = 0;
     const DxfEntity* at(std::size_t line) const {
@@ -44,7 +57,7 @@ struct DxfScan {
     }
 };
 
-/// Checks `text` (the whole file) and returns what it recorded. Throws UserError
+/// Checks `text` (the whole file, decoded to UTF-8 by decodeDxfText) and returns what it recorded. Throws UserError
 /// "<file>: line N: <reason>" for: binary data, a group code that is not an integer, a number
 /// that does not parse or is not finite (in ENTITIES), a line longer than dxflib reads, a
 /// missing ENDSEC/EOF (truncated file), counts that are negative or disagree with the values

@@ -1,5 +1,4 @@
-// Rails from OBJ and CSV files, the dispatch by extension, units, and the final check of every
-// rail through Curve::build (Import.h).
+// The dispatch of rail files by extension, units, and the final check of every rail (Import.h).
 
 #include "io/Import.h"
 
@@ -8,9 +7,8 @@
 #include "io/IoText.h"
 #include "model/Error.h"
 
-#include <algorithm>
 #include <array>
-#include <map>
+#include <cmath>
 
 namespace netsculpt {
 
@@ -38,256 +36,26 @@ std::string joined(const std::vector<std::string>& items) {
 }
 
 /// Splits a line at `separator`, honouring double-quoted fields ("a,b" and "" for a quote).
-std::vector<std::string> splitFields(std::string_view line, char separator) {
-    std::vector<std::string> fields(1);
-    bool inQuotes = false;
-    for (std::size_t i = 0; i < line.size(); ++i) {
-        const char c = line[i];
-        if (inQuotes) {
-            if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-                fields.back() += '"';
-                ++i;
-            } else if (c == '"') {
-                inQuotes = false;
-            } else {
-                fields.back() += c;
-            }
-        } else if (c == '"') {
-            inQuotes = true;
-        } else if (c == separator) {
-            fields.emplace_back();
-        } else {
-            fields.back() += c;
-        }
-    }
-    for (auto& field : fields)
-        field = std::string(io::trim(field));
-    return fields;
-}
-
-std::vector<std::string> splitWords(std::string_view line) {
-    std::vector<std::string> words;
-    std::size_t i = 0;
-    while (i < line.size()) {
-        while (i < line.size() && (line[i] == ' ' || line[i] == '\t'))
-            ++i;
-        const std::size_t start = i;
-        while (i < line.size() && line[i] != ' ' && line[i] != '\t')
-            ++i;
-        if (i > start)
-            words.emplace_back(line.substr(start, i - start));
-    }
-    return words;
-}
-
-std::vector<std::string_view> lines(const std::string& text) {
-    std::vector<std::string_view> out;
-    std::size_t start = 0;
-    while (start <= text.size()) {
-        std::size_t end = text.find('\n', start);
-        if (end == std::string::npos)
-            end = text.size();
-        std::string_view line(text.data() + start, end - start);
-        if (!line.empty() && line.back() == '\r')
-            line.remove_suffix(1);
-        out.push_back(line);
-        start = end + 1;
-    }
-    if (!out.empty() && out.back().empty())
-        out.pop_back();
-    return out;
-}
-
-void checkText(const std::string& file, const std::string& text) {
-    if (text.find('\0') != std::string::npos)
-        throw UserError(file + ": holds binary data (a NUL byte); expected a text file");
-}
-
-double coordinate(const std::string& file, std::size_t line, std::string_view field,
-                  const char* what) {
-    const auto value = io::parseDouble(field);
-    if (!value)
-        throw UserError(file + ":" + std::to_string(line) + ": " + what + " " + io::quoted(field) +
-                        " is not a number");
-    if (!std::isfinite(*value))
-        throw UserError(file + ":" + std::to_string(line) + ": " + what + " is " +
-                        io::quoted(field) + "; coordinates must be finite numbers");
-    return *value;
-}
-
-// ---- CSV ----
-
-/// `text` without the UTF-8 byte-order mark that spreadsheets write before a CSV's first field.
-std::string withoutByteOrderMark(std::string text) {
-    if (text.starts_with("\xEF\xBB\xBF"))
-        text.erase(0, 3);
-    return text;
-}
-
-/// Where a rail CSV's fields are: x, y, z and the rail's name (-1: none, one rail per file).
-struct CsvColumns {
-    int rail = -1, x = 0, y = 1, z = 2;
-};
-
-/// The columns a header line names: x, y and z once each, rail at most once, nothing else.
-CsvColumns readCsvHeader(const std::string& file, std::size_t lineNo, std::string_view line,
-                         const std::vector<std::string>& fields) {
-    CsvColumns at{-1, -1, -1, -1};
-    for (std::size_t c = 0; c < fields.size(); ++c) {
-        std::string name = fields[c];
-        std::transform(name.begin(), name.end(), name.begin(), ::tolower);
-        int* column = name == "x"      ? &at.x
-                      : name == "y"    ? &at.y
-                      : name == "z"    ? &at.z
-                      : name == "rail" ? &at.rail
-                                       : nullptr;
-        if (column == nullptr || *column >= 0)
-            throw UserError(file + ":" + std::to_string(lineNo) + ": the header " +
-                            io::quoted(line, 80) + " has " +
-                            (column == nullptr ? "a column " : "twice the column ") +
-                            io::quoted(name, 40) +
-                            "; a rail file's columns are x, y, z and optionally rail (a knots "
-                            "export is no rail file)");
-        *column = int(c);
-    }
-    if (at.x < 0 || at.y < 0 || at.z < 0)
-        throw UserError(file + ":" + std::to_string(lineNo) + ": the header " +
-                        io::quoted(line, 80) +
-                        " must name columns x, y and z (and optionally rail)");
-    return at;
-}
-
-std::vector<io::SourcedCurve> readCsv(const std::filesystem::path& path) {
-    const std::string file = io::displayName(path);
-    const std::string text = withoutByteOrderMark(io::readWholeFile(path));
-    checkText(file, text);
-    CsvColumns at;
-    std::size_t expected = 3;
-    bool sawHeader = false;
-    std::vector<std::string> order;                  // rail names, first appearance
-    std::map<std::string, std::vector<Vec3>> points; // by rail name
-    std::map<std::string, std::size_t> firstLine;
-    const std::string stem = path.stem().string();
-    const auto all = lines(text);
-    for (std::size_t i = 0; i < all.size(); ++i) {
-        const std::size_t lineNo = i + 1;
-        const std::string_view line = io::trim(all[i]);
-        if (line.empty() || line.front() == '#')
-            continue;
-        auto fields = splitFields(line, ',');
-        if (!sawHeader && points.empty() && !io::parseDouble(fields[0])) {
-            sawHeader = true;
-            at = readCsvHeader(file, lineNo, line, fields);
-            expected = fields.size();
-            continue;
-        }
-        if (fields.size() != expected)
-            throw UserError(file + ":" + std::to_string(lineNo) + ": " +
-                            std::to_string(fields.size()) + " fields, expected " +
-                            std::to_string(expected) +
-                            (sawHeader ? " (as in the header)"
-                                       : " (x,y,z; give a header line to add a rail column)"));
-        const std::string rail = at.rail >= 0 ? fields[std::size_t(at.rail)] : stem;
-        if (rail.empty())
-            throw UserError(file + ":" + std::to_string(lineNo) + ": the rail column is empty");
-        const Vec3 p{coordinate(file, lineNo, fields[std::size_t(at.x)], "x"),
-                     coordinate(file, lineNo, fields[std::size_t(at.y)], "y"),
-                     coordinate(file, lineNo, fields[std::size_t(at.z)], "z")};
-        if (!points.count(rail)) {
-            order.push_back(rail);
-            firstLine[rail] = lineNo;
-        }
-        points[rail].push_back(p);
-    }
-    if (order.empty())
-        throw UserError(file + ": holds no points (expected x,y,z rows)");
-    std::vector<io::SourcedCurve> out;
-    for (const auto& name : order)
-        out.push_back(
-            {{name, io::polylineSpec(points[name])},
-             "rail " + io::quoted(name) + " (from line " + std::to_string(firstLine[name]) + ")"});
-    return out;
-}
-
-// ---- OBJ ----
-
-std::vector<io::SourcedCurve> readObj(const std::filesystem::path& path) {
-    const std::string file = io::displayName(path);
-    const std::string text = io::readWholeFile(path);
-    checkText(file, text);
-    std::vector<Vec3> vertices;
-    struct Line {
-        std::string object;
-        std::size_t lineNo;
-        std::vector<Vec3> points;
-        bool closed;
-    };
-    std::vector<Line> found;
-    std::string object = path.stem().string();
-    const auto all = lines(text);
-    for (std::size_t i = 0; i < all.size(); ++i) {
-        const std::size_t lineNo = i + 1;
-        const std::string_view line = io::trim(all[i]);
-        if (line.empty() || line.front() == '#')
-            continue; // a '#' inside a name is not a comment
-        const std::vector<std::string> words = splitWords(line);
-        const std::string& keyword = words[0];
-        if (keyword == "v") {
-            if (words.size() < 4)
-                throw UserError(file + ":" + std::to_string(lineNo) +
-                                ": a vertex needs x y z, got " + io::quoted(line, 80));
-            vertices.push_back({coordinate(file, lineNo, words[1], "x"),
-                                coordinate(file, lineNo, words[2], "y"),
-                                coordinate(file, lineNo, words[3], "z")});
-        } else if (keyword == "o" || keyword == "g") {
-            if (words.size() > 1)
-                object = std::string(io::trim(line.substr(1)));
-        } else if (keyword == "l") {
-            if (words.size() < 3)
-                throw UserError(file + ":" + std::to_string(lineNo) +
-                                ": a line element needs at least 2 vertices");
-            Line l{object, lineNo, {}, false};
-            std::vector<long long> indices;
-            for (std::size_t w = 1; w < words.size(); ++w) {
-                const std::string_view ref =
-                    std::string_view(words[w]).substr(0, words[w].find('/'));
-                const auto index = io::parseInteger(ref);
-                const long long n = (long long)vertices.size();
-                const long long resolved = !index ? 0 : *index > 0 ? *index : n + *index + 1;
-                if (!index || *index == 0 || resolved < 1 || resolved > n)
-                    throw UserError(file + ":" + std::to_string(lineNo) + ": vertex reference " +
-                                    io::quoted(words[w]) + " does not name one of the " +
-                                    std::to_string(n) + " vertices defined so far");
-                indices.push_back(resolved);
-                l.points.push_back(vertices[std::size_t(resolved - 1)]);
-            }
-            if (indices.size() > 2 && indices.front() == indices.back()) {
-                l.points.pop_back();
-                l.closed = true;
-            }
-            found.push_back(std::move(l));
-        }
-    }
-    if (found.empty())
-        throw UserError(file +
-                        ": holds no polylines ('l' elements); rails are read from 'l' lines");
-    std::map<std::string, int> perObject, seen;
-    for (const auto& l : found)
-        ++perObject[l.object];
-    std::vector<io::SourcedCurve> out;
-    for (auto& l : found) {
-        std::string name = l.object;
-        if (perObject[l.object] > 1)
-            name += io::concat({"#", std::to_string(++seen[l.object])});
-        out.push_back({{name, io::polylineSpec(std::move(l.points), l.closed)},
-                       "line " + std::to_string(l.lineNo)});
-    }
-    return out;
-}
-
 } // namespace
 
 namespace io {
+
+void checkCoordinates(const std::string& file, const std::string& where,
+                      const std::vector<Vec3>& points, double metres) {
+    for (const Vec3& p : points)
+        for (const double c : {p.x, p.y, p.z}) {
+            if (std::abs(c * metres) <= kMaxCoordinate)
+                continue;
+            const bool inMetres = metres == 1.0;
+            throw UserError(concat(
+                {file, ": ", where, ": has a coordinate of ", numberText(c),
+                 inMetres ? " m" : concat({" (", numberText(c * metres), " m)"}),
+                 ", too large: rails must lie within ", numberText(kMaxCoordinate),
+                 " m of the origin in x, y and z",
+                 inMetres ? "" : concat({" (", numberText(kMaxCoordinate / metres),
+                                         " in the file's units)"})}));
+        }
+}
 
 CurveSpec polylineSpec(std::vector<Vec3> points, bool closed) {
     CurveSpec spec;
@@ -306,6 +74,7 @@ std::vector<NamedCurve> finishRails(const std::string& file, std::vector<Sourced
     rails.reserve(curves.size());
     for (auto& sourced : curves) {
         CurveSpec& spec = sourced.rail.curve;
+        checkCoordinates(file, sourced.where, spec.points, metres);
         if (metres != 1.0)
             for (Vec3& p : spec.points)
                 p *= metres;
@@ -348,11 +117,14 @@ std::vector<NamedCurve> importRailsFile(const std::filesystem::path& path,
         (void)metresPerUnit(options.units); // validate first
     if (ext == "dxf")
         return io::importDxf(path, options);
+    if (!options.layers.empty() && (ext == "obj" || ext == "csv"))
+        throw UserError(file + ": layers selects the layers of a DXF drawing; an ." + ext +
+                        " file has none (leave layers out)");
     const double metres = options.units.empty() ? 1.0 : metresPerUnit(options.units);
     if (ext == "obj")
-        return io::finishRails(file, readObj(path), metres);
+        return io::finishRails(file, io::readObj(path, metres), metres);
     if (ext == "csv")
-        return io::finishRails(file, readCsv(path), metres);
+        return io::finishRails(file, io::readCsv(path), metres);
     throw UserError(file + ": cannot read rails from a ." + ext +
                     " file; rail files are .dxf, .obj and .csv");
 }

@@ -10,14 +10,23 @@
 // refused too (the file wins only when nobody contradicts it). OBJ and CSV carry no units: they
 // are read as metres unless ImportOptions::units says otherwise.
 //
-// Closed rails. DXF: the entity's closed flag (a chain of LINEs and ARCs is closed when its
-// ends meet). OBJ and CSV: a rail whose last point repeats its first point is closed (the
-// repeated point is dropped); exportRailsFile writes closed rails that way.
+// Closed rails. A rail whose end lies on its start (within 1e-6 of its extent) is closed and the
+// repeated point dropped, in every format: a DXF polyline flagged closed or not, a chain of
+// LINEs and ARCs, OBJ and CSV points; exportRailsFile writes closed rails that way.
+//
+// Chains. The LINEs and ARCs of a DXF layer and the `l` elements of an OBJ object are joined end
+// to end (Chains.h); a piece shorter than the join tolerance is left out.
+//
+// DXF blocks and layers. INSERTs of model space are read through their transform (DxfBlocks.h).
+// Entities on frozen or off layers and on Defpoints are not read, unless ImportOptions::layers
+// lists the layers to read. Text is decoded to UTF-8 (DxfText.h). Coordinates beyond
+// kMaxCoordinate (ImportDetail.h) are refused in every format.
 //
 // Names. DXF: "LAYER:HANDLE" of the entity (of the first entity of a LINE/ARC chain, in file
-// order; "LAYER:#N" for the N-th entity when the file has no handles). OBJ: the name of the `o`
-// or `g` the line belongs to (else the file's stem), with "#k" appended when it holds several
-// lines. CSV: the `rail` column's value (else the file's stem).
+// order; "LAYER:#N" for the N-th entity when the file has no handles); in a block reference
+// "INSLAYER:INSHANDLE/BLOCK:HANDLE". OBJ: the name of the `o` or `g` the line belongs to (else
+// the file's stem), with "#k" appended when it holds several rails. CSV: the `rail` column's
+// value (else the file's stem).
 
 #include "commands/Command.h"
 
@@ -31,6 +40,9 @@ struct ImportOptions {
     /// Length unit of the file's numbers when the file does not say ("" = the rules above):
     /// one of unitNames() — "m", "mm", "cm", "dm", "km", "in", "ft", "yd", "mi".
     std::string units;
+    /// DXF only: the layers to read (compared without case; empty = every layer that is drawn).
+    /// A name the drawing does not have is refused, with the drawing's layers.
+    std::vector<std::string> layers;
 };
 
 /// Reads every rail of a file, chosen by extension (.dxf, .obj, .csv; case-insensitive), in

@@ -1,5 +1,5 @@
 #pragma once
-// Internals shared by the rail readers (Import.cpp, DxfImport.cpp).
+// Internals shared by the rail readers (Import.cpp, RailText.cpp, DxfImport.cpp).
 
 #include "io/Import.h"
 
@@ -16,15 +16,31 @@ struct SourcedCurve {
     std::size_t order = 0; ///< sort key: the line the rail starts at
 };
 
-/// Scales the points by `metres` per file unit, checks every curve with Curve::build and
-/// returns the rails; UserError "<file>: <where>: <reason>" for the first bad one.
+/// Rails must lie within this distance of the origin, m, in every coordinate: a site's
+/// coordinates (an easting, a northing, even geocentric ones) are far inside, and lengths and
+/// the joining of ends stay exact to well under a micrometre there.
+inline constexpr double kMaxCoordinate = 1e8;
+
+/// UserError "<file>: <where>: ..." naming the coordinate and the allowed range unless every
+/// coordinate of `points` (file units, `metres` each) is finite and within kMaxCoordinate.
+void checkCoordinates(const std::string& file, const std::string& where,
+                      const std::vector<Vec3>& points, double metres);
+
+/// Checks the coordinates, scales the points by `metres` per file unit, checks every curve
+/// with Curve::build and returns the rails; UserError "<file>: <where>: <reason>" for the
+/// first bad one.
 std::vector<NamedCurve> finishRails(const std::string& file, std::vector<SourcedCurve> curves,
                                     double metres);
 
 /// A polyline spec from points; a last point equal to the first closes it (and is dropped).
 CurveSpec polylineSpec(std::vector<Vec3> points, bool closed = false);
 
-/// DXF rails (DxfImport.cpp). `file` is the name for messages.
+/// CSV rails (RailText.cpp), in file units.
+std::vector<SourcedCurve> readCsv(const std::filesystem::path& path);
+/// OBJ rails (RailText.cpp), in file units; `metres` per unit for the coordinate check.
+std::vector<SourcedCurve> readObj(const std::filesystem::path& path, double metres);
+
+/// DXF rails (DxfImport.cpp).
 std::vector<NamedCurve> importDxf(const std::filesystem::path& path, const ImportOptions& options);
 
 } // namespace netsculpt::io

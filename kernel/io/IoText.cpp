@@ -80,6 +80,20 @@ std::optional<double> parseDouble(std::string_view text) {
     return value;
 }
 
+std::string numberRefusal(std::string_view text) {
+    text = trim(text);
+    if (!text.empty() && text.front() == '+')
+        text.remove_prefix(1);
+    double value = 0;
+    const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (result.ec != std::errc::result_out_of_range || result.ptr != text.data() + text.size())
+        return "is not a number";
+    const std::size_t e = text.find_last_of("eE");
+    const bool tiny = e != std::string_view::npos && e + 1 < text.size() && text[e + 1] == '-';
+    return tiny ? "is out of range: too near to 0 for a double (below about 2.2e-308; write 0)"
+                : "is out of range: too large for a double (beyond about 1.8e308)";
+}
+
 std::optional<long long> parseInteger(std::string_view text) {
     text = trim(text);
     if (!text.empty() && text.front() == '+')

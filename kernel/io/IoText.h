@@ -27,6 +27,9 @@ std::string numberText(double value);
 /// Parses a whole field as a double (surrounding blanks allowed, a leading '+' allowed).
 /// Empty when the text is not a number; NaN and infinities parse (callers check isfinite).
 std::optional<double> parseDouble(std::string_view text);
+/// Why parseDouble refused `text`: "is out of range (...)" for a number beyond what a double
+/// holds (1e400, 1e-400), else "is not a number".
+std::string numberRefusal(std::string_view text);
 /// Parses a whole field as an integer (surrounding blanks allowed).
 std::optional<long long> parseInteger(std::string_view text);
 

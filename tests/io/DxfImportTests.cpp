@@ -305,7 +305,7 @@ TEST_CASE("DXF: the counts dxflib allocates by are bounded and given once, in ev
           "0\nSECTION\n2\nBLOCKS\n0\nBLOCK\n8\n0\n2\nB\n0\nLWPOLYLINE\n8\nR\n90\n-1\n"
           "0\nENDBLK\n0\nENDSEC\n" +
               minimalDxf("0\nLINE\n8\nR\n10\n0\n20\n0\n30\n0\n11\n1\n21\n0\n31\n0\n"),
-          {"line 16", "LWPOLYLINE in the BLOCKS section (line 11)", "vertex count -1"});
+          {"line 16", "LWPOLYLINE on layer R (line 11) in block B", "vertex count -1"});
     fails("objects.dxf",
           "0\nSECTION\n2\nOBJECTS\n0\nSPLINE\n73\n1e9\n0\nENDSEC\n" +
               minimalDxf("0\nLINE\n8\nR\n10\n0\n20\n0\n30\n0\n11\n1\n21\n0\n31\n0\n"),

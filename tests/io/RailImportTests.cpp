@@ -123,13 +123,35 @@ TEST_CASE("CSV rails: one rail per file, or grouped by a rail column") {
 TEST_CASE("OBJ rails: l elements, named by their object, closed when they end where they start") {
     auto rails = importText("net.obj", "# test\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0 0.5 0.5 0.5\n"
                                        "o loop\nl 1 2 3 4 1\no pair\nl 1 3\nl -1 -2/7\n");
-    REQUIRE(rails.size() == 3);
+    REQUIRE(rails.size() == 2);
     CHECK(rails[0].name == "loop");
     CHECK(rails[0].curve.closed);
     CHECK(rails[0].curve.points.size() == 4);
-    CHECK(rails[1].name == "pair#1");
-    CHECK(rails[2].name == "pair#2");
-    CHECK(rails[2].curve.points == std::vector<Vec3>{{0, 1, 0}, {1, 1, 0}});
+    // "l 1 3" and "l 4 3" share vertex 3: one rail, from the first element's direction.
+    CHECK(rails[1].name == "pair");
+    CHECK(rails[1].curve.points == std::vector<Vec3>{{0, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+
+    auto apart = importText("apart.obj", "v 0 0 0\nv 1 0 0\nv 5 0 0\nv 6 0 0\nl 1 2\nl 3 4\n");
+    REQUIRE(apart.size() == 2);
+    CHECK(apart[0].name == "apart#1");
+    CHECK(apart[1].name == "apart#2");
+}
+
+TEST_CASE("OBJ rails written one edge per l element (as Blender does) are chained") {
+    // A square of side 2, its edges out of order and one reversed: one closed rail, 8 long.
+    auto rails = importText("edges.obj", "o Ring\nv 0 0 1\nv 2 0 1\nv 2 2 1\nv 0 2 1\n"
+                                         "l 1 2\nl 3 4\nl 3 2\nl 4 1\n");
+    REQUIRE(rails.size() == 1);
+    CHECK(rails[0].name == "Ring");
+    CHECK(rails[0].curve.closed);
+    CHECK(rails[0].curve.points ==
+          std::vector<Vec3>{{0, 0, 1}, {2, 0, 1}, {2, 2, 1}, {0, 2, 1}});
+    CHECK(Curve::build(rails[0].curve).length() == 8);
+    // Three edges at one vertex: a rail cannot branch.
+    CHECK_THROWS_WITH(importText("branch.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv -1 0 0\n"
+                                               "l 1 2\nl 1 3\nl 1 4\n"),
+                      Contains("3 ends meet at (0, 0, 0)") && Contains("line 5, line 6, line 7") &&
+                          Contains("different objects"));
 }
 
 TEST_CASE("bad CSV and OBJ files give an error with the file and line, and no rails") {
@@ -140,6 +162,8 @@ TEST_CASE("bad CSV and OBJ files give an error with the file and line, and no ra
     };
     fails("nan.csv", "0,0,0\n1,nan,0\n", ":2: y is 'nan'");
     fails("word.csv", "0,0,0\n1,two,0\n", ":2: y 'two' is not a number");
+    fails("range.csv", "0,0,0\n1e400,0,0\n", ":2: x '1e400' is out of range: too large");
+    fails("far.csv", "0,0,0\n2e8,0,0\n", "coordinate of 2e+08 m, too large: rails must lie within 1e+08 m");
     fails("short.csv", "0,0,0\n1,0\n", ":2: 2 fields, expected 3");
     fails("header.csv", "a,b,c\n1,2,3\n", ":1: the header 'a,b,c' has a column 'a'");
     fails("knots.csv", "piece,row,column,x,y,z,fixed\n1,0,0,0,0,3,1\n",

@@ -1,0 +1,139 @@
+#include "io/Chains.h"
+
+#include "io/IoText.h"
+#include "model/Error.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace netsculpt::io {
+
+namespace {
+
+std::string pointText(const Vec3& p) {
+    return concat({"(", numberText(p.x), ", ", numberText(p.y), ", ", numberText(p.z), ")"});
+}
+
+bool shorterThan(const ChainPart& part, double tolerance) {
+    return std::all_of(part.points.begin(), part.points.end(), [&](const Vec3& p) {
+        return distance(p, part.points.front()) <= tolerance;
+    });
+}
+
+/// Ends are nodes 2 * part + (0 = start, 1 = end). Every end's partners: ends of other parts (or
+/// the other end of the same part) within `tolerance`. UserError when three or more ends meet.
+std::vector<std::vector<int>> partnersOf(const std::string& file,
+                                         const std::vector<ChainPart>& parts, double tolerance,
+                                         std::string_view advice) {
+    const int nodes = int(2 * parts.size());
+    const auto end = [&](int node) -> const Vec3& {
+        const auto& pts = parts[std::size_t(node / 2)].points;
+        return node % 2 == 0 ? pts.front() : pts.back();
+    };
+    std::vector<std::vector<int>> partners(std::size_t(nodes), std::vector<int>{});
+    for (int a = 0; a < nodes; ++a)
+        for (int b = a + 1; b < nodes; ++b)
+            if (distance(end(a), end(b)) <= tolerance) {
+                partners[std::size_t(a)].push_back(b);
+                partners[std::size_t(b)].push_back(a);
+            }
+    for (int a = 0; a < nodes; ++a) {
+        const auto& list = partners[std::size_t(a)];
+        if (list.size() < 2)
+            continue;
+        std::vector<int> meeting{a / 2};
+        for (int b : list)
+            if (std::find(meeting.begin(), meeting.end(), b / 2) == meeting.end())
+                meeting.push_back(b / 2);
+        std::string names;
+        for (int part : meeting)
+            names += (names.empty() ? "" : ", ") + parts[std::size_t(part)].where;
+        throw UserError(file + ": " + std::to_string(list.size() + 1) + " ends meet at " +
+                        pointText(end(a)) + " (" + names + "); a rail cannot branch: " +
+                        std::string(advice));
+    }
+    return partners;
+}
+
+} // namespace
+
+double joinTolerance(const std::vector<ChainPart>& parts) {
+    if (parts.empty())
+        return 0;
+    Vec3 lo = parts[0].points[0], hi = lo;
+    for (const auto& part : parts)
+        for (const Vec3& p : part.points) {
+            lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+            hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+        }
+    return 1e-6 * distance(lo, hi);
+}
+
+std::vector<SourcedCurve> joinChains(const std::string& file, std::vector<ChainPart> parts,
+                                     std::string_view advice) {
+    const double tolerance = joinTolerance(parts);
+    if (std::any_of(parts.begin(), parts.end(),
+                    [&](const ChainPart& p) { return !shorterThan(p, tolerance); }))
+        std::erase_if(parts, [&](const ChainPart& p) { return shorterThan(p, tolerance); });
+    const int n = int(parts.size());
+    const auto partners = partnersOf(file, parts, tolerance, advice);
+    const auto partner = [&](int node) {
+        return partners[std::size_t(node)].empty() ? -1 : partners[std::size_t(node)][0];
+    };
+
+    std::vector<char> used(std::size_t(n), 0);
+    std::vector<SourcedCurve> chains;
+    for (int first = 0; first < n; ++first) {
+        if (used[std::size_t(first)])
+            continue;
+        used[std::size_t(first)] = 1;
+        // (part, forward) in chain order: walk on from the first part's end, then back from its
+        // start.
+        std::vector<std::pair<int, bool>> forward{{first, true}}, backward;
+        bool closed = false;
+        for (int node = 2 * first + 1;;) {
+            const int next = partner(node);
+            if (next < 0)
+                break;
+            if (next / 2 == first) {
+                closed = true;
+                break;
+            }
+            used[std::size_t(next / 2)] = 1;
+            forward.push_back({next / 2, next % 2 == 0});
+            node = next ^ 1;
+        }
+        if (!closed)
+            for (int node = 2 * first;;) {
+                const int next = partner(node);
+                if (next < 0 || next / 2 == first)
+                    break;
+                used[std::size_t(next / 2)] = 1;
+                backward.push_back({next / 2, next % 2 == 1});
+                node = next ^ 1;
+            }
+        std::vector<std::pair<int, bool>> order(backward.rbegin(), backward.rend());
+        order.insert(order.end(), forward.begin(), forward.end());
+        std::vector<Vec3> points;
+        for (const auto& [part, along] : order) {
+            std::vector<Vec3> pts = parts[std::size_t(part)].points;
+            if (!along)
+                std::reverse(pts.begin(), pts.end());
+            points.insert(points.end(), pts.begin() + (points.empty() ? 0 : 1), pts.end());
+        }
+        if (closed && points.size() > 2)
+            points.pop_back();
+        const ChainPart& head = parts[std::size_t(first)];
+        CurveSpec spec;
+        spec.points = std::move(points);
+        spec.closed = closed;
+        const std::string where = order.size() == 1 ? head.where
+                                                    : "the chain of " +
+                                                          std::to_string(order.size()) +
+                                                          " parts starting at " + head.where;
+        chains.push_back({{head.name, std::move(spec)}, where, head.order});
+    }
+    return chains;
+}
+
+} // namespace netsculpt::io

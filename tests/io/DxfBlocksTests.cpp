@@ -1,0 +1,146 @@
+// DXF block references read through their transform, and the layers that are read
+// (io/Import.h). Fixtures: tools/fixtures/make_dxf_fixtures.py (ezdxf); the numbers below are
+// computed by hand from the fixtures' comments (ezdxf's virtual_entities() agrees with them).
+
+#include "IoTestSupport.h"
+
+#include "geometry/Curve.h"
+#include "io/Import.h"
+#include "model/Error.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+
+using namespace netsculpt;
+using namespace netsculpt::test;
+using Catch::Matchers::Contains;
+
+namespace {
+
+std::vector<NamedCurve> dxf(const std::string& name, const ImportOptions& options = {}) {
+    return importRailsFile(dataDir() / "dxf" / name, options);
+}
+
+std::string withBlock(const std::string& block, const std::string& entities) {
+    return "0\nSECTION\n2\nBLOCKS\n" + block + "0\nENDSEC\n0\nSECTION\n2\nENTITIES\n" + entities +
+           "0\nENDSEC\n0\nEOF\n";
+}
+
+const std::string kLineBlock = "0\nBLOCK\n8\n0\n2\nB\n70\n0\n10\n0\n20\n0\n30\n0\n"
+                               "0\nLINE\n8\n0\n10\n0\n20\n0\n30\n0\n11\n1\n21\n0\n31\n0\n"
+                               "0\nENDBLK\n8\n0\n";
+
+std::string insert(const std::string& block, const std::string& more = "") {
+    return "0\nINSERT\n5\nA1\n8\nI\n2\n" + block + "\n10\n0\n20\n0\n30\n0\n" + more;
+}
+
+} // namespace
+
+TEST_CASE("DXF INSERT: a block's rails are placed by scale, rotation, base point and extrusion") {
+    const auto rails = dxf("blocks.dxf");
+    REQUIRE(rails.size() == 4);
+    // Scaled (2, 3) from the base point (1, 1), turned 90 degrees, moved to (10, 0, 5).
+    const NamedCurve& turned = rails[0];
+    CHECK_THAT(turned.name, Contains("INS:") && Contains("/RING:"));
+    CHECK(turned.curve.closed);
+    REQUIRE(turned.curve.points.size() == 4);
+    const std::vector<Vec3> square{{10, 0, 5}, {10, 2, 5}, {7, 2, 5}, {7, 0, 5}};
+    for (std::size_t i = 0; i < 4; ++i)
+        CHECK(distance(turned.curve.points[i], square[i]) < 1e-12);
+    CHECK(Curve::build(turned.curve).length() == Approx(10).epsilon(1e-14));
+    // Extrusion (0, 0, -1): the OCS maps (x, y, z) to (-x, y, -z).
+    const NamedCurve& mirrored = rails[1];
+    CHECK_THAT(mirrored.name, Contains("MIRROR:") && Contains("/RING:"));
+    const std::vector<Vec3> below{{-1, 0, -2}, {-2, 0, -2}, {-2, 1, -2}, {-1, 1, -2}};
+    REQUIRE(mirrored.curve.points.size() == 4);
+    for (std::size_t i = 0; i < 4; ++i)
+        CHECK(distance(mirrored.curve.points[i], below[i]) < 1e-12);
+    // Nested: an ARC of block HOOK inside block PAIR, turned 180 degrees, moved to (0, 20, 0).
+    const NamedCurve& hook = rails[2];
+    CHECK_THAT(hook.name, Contains("OUTER:") && Contains("/PAIR:") && Contains("/HOOK:"));
+    CHECK_FALSE(hook.curve.closed);
+    CHECK(distance(hook.curve.points.front(), {-1, 20, 0}) < 1e-12);
+    CHECK(distance(hook.curve.points.back(), {0, 19, 0}) < 1e-12);
+    for (const Vec3& p : hook.curve.points)
+        CHECK(distance(p, {0, 20, 0}) == Approx(1).epsilon(1e-12));
+    CHECK(Curve::build(hook.curve).length() == Approx(std::numbers::pi / 2).epsilon(1e-5));
+    CHECK_THAT(rails[3].name, Contains("PLAIN:"));
+}
+
+TEST_CASE("DXF INSERT: what cannot be placed is refused naming the INSERT and the block") {
+    const auto dir = outputDir("dxf-inserts");
+    ImportOptions metres;
+    metres.units = "m";
+    const auto fails = [&](const std::string& name, const std::string& text,
+                           std::initializer_list<std::string> parts) {
+        INFO(name);
+        writeText(dir / name, text);
+        try {
+            importRailsFile(dir / name, metres);
+            FAIL("no error");
+        } catch (const UserError& e) {
+            const std::string message = e.what();
+            INFO(message);
+            for (const auto& part : parts)
+                CHECK_THAT(message, Contains(part));
+        }
+    };
+    fails("minsert.dxf", withBlock(kLineBlock, insert("B", "70\n3\n71\n2\n44\n5\n45\n5\n")),
+          {"INSERT A1 on layer I", "3 columns by 2 rows of block 'B'", "MINSERT", "explode"});
+    fails("missing.dxf", withBlock(kLineBlock, insert("C")),
+          {"INSERT A1", "block 'C', which the file does not define", "explode"});
+    fails("flat.dxf", withBlock(kLineBlock, insert("B", "41\n1\n42\n0\n")),
+          {"INSERT A1", "scale of 0 (x 1, y 0, z 1)"});
+    const std::string loop = "0\nBLOCK\n8\n0\n2\nL\n10\n0\n20\n0\n30\n0\n"
+                             "0\nINSERT\n8\n0\n2\nL\n10\n1\n20\n0\n30\n0\n0\nENDBLK\n";
+    fails("loop.dxf", withBlock(loop, insert("L")), {"inserts block 'L' inside itself"});
+    const std::string ellipse = "0\nBLOCK\n8\n0\n2\nE\n10\n0\n20\n0\n30\n0\n"
+                                "0\nELLIPSE\n8\n0\n10\n0\n20\n0\n30\n0\n11\n1\n21\n0\n31\n0\n"
+                                "40\n0.5\n0\nENDBLK\n";
+    fails("ellipse.dxf", withBlock(ellipse, insert("E")),
+          {"ELLIPSE on layer 0", "in block E, inserted by INSERT A1 on layer I", "convert it"});
+    // A block that is not inserted is not drawn: its ELLIPSE is no reason to refuse the file.
+    writeText(dir / "unused.dxf",
+              withBlock(ellipse, "0\nLINE\n8\nR\n10\n0\n20\n0\n30\n0\n11\n2\n21\n0\n31\n0\n"));
+    CHECK(importRailsFile(dir / "unused.dxf", metres).size() == 1);
+    // The block's LINE on layer 0 takes the INSERT's layer I; x scale 3 makes it 3 long.
+    writeText(dir / "scaled.dxf", withBlock(kLineBlock, insert("B", "41\n3\n")));
+    const auto scaled = importRailsFile(dir / "scaled.dxf", metres);
+    REQUIRE(scaled.size() == 1);
+    CHECK(scaled[0].name == "I:A1/B:#1");
+    CHECK(scaled[0].curve.points == std::vector<Vec3>{{0, 0, 0}, {3, 0, 0}});
+}
+
+TEST_CASE("DXF layers: frozen, off and Defpoints are not read; layers = {...} chooses") {
+    const auto drawn = dxf("layers.dxf");
+    REQUIRE(drawn.size() == 1);
+    CHECK_THAT(drawn[0].name, Contains("RAIL:"));
+    CHECK(drawn[0].curve.closed);
+
+    ImportOptions chosen;
+    chosen.layers = {"helper", "Defpoints"}; // without case, as CAD programs compare them
+    const auto helpers = dxf("layers.dxf", chosen);
+    REQUIRE(helpers.size() == 3);
+    CHECK_THAT(helpers[0].name, Contains("HELPER:"));
+    CHECK(helpers[0].curve.points == std::vector<Vec3>{{-5, 0, 0}, {5, 0, 0}});
+    CHECK_THAT(helpers[1].name, Contains("Defpoints:"));
+    // The INSERT on HELPER: its LINE (0,0,0)-(0,0,1) moved to (3, 3, 0).
+    CHECK_THAT(helpers[2].name, Contains("HELPER:") && Contains("/B:"));
+    CHECK(helpers[2].curve.points == std::vector<Vec3>{{3, 3, 0}, {3, 3, 1}});
+
+    ImportOptions unknown;
+    unknown.layers = {"RAIL", "RAILZ"};
+    CHECK_THROWS_WITH(dxf("layers.dxf", unknown),
+                      Contains("layers.dxf") && Contains("the layer 'RAILZ'") &&
+                          Contains("its layers are 0, Defpoints, HELPER, HIDDEN, RAIL"));
+
+    const auto dir = outputDir("dxf-layers");
+    ImportOptions metres;
+    metres.units = "m";
+    writeText(dir / "rails.csv", "0,0,0\n1,0,0\n");
+    metres.layers = {"RAIL"};
+    CHECK_THROWS_WITH(importRailsFile(dir / "rails.csv", metres),
+                      Contains("rails.csv") && Contains("layers selects the layers of a DXF"));
+}
