@@ -122,6 +122,8 @@ class TableArgs {
     std::vector<Vec3> points(const char* key) const;
     /// A list of finite numbers.
     std::vector<double> numbers(const char* key) const;
+    /// A non-empty list of strings.
+    std::vector<std::string> strings(const char* key) const;
 
   private:
     const Call& call_;

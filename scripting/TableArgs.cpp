@@ -187,4 +187,21 @@ std::vector<double> TableArgs::numbers(const char* key) const {
     return values;
 }
 
+std::vector<std::string> TableArgs::strings(const char* key) const {
+    lua_State* L = call_.L;
+    const int at = push(key);
+    const lua_Integer n = lua_type(L, at) == LUA_TTABLE ? lua_Integer(lua_rawlen(L, at)) : 0;
+    if (n == 0)
+        call_.bad(key, at, "a non-empty list of strings {\"a\", \"b\", ...}");
+    std::vector<std::string> values;
+    for (lua_Integer i = 1; i <= n; ++i) {
+        lua_rawgeti(L, at, i);
+        const std::string name = std::string(key) + "[" + std::to_string(i) + "]";
+        values.push_back(checkString(call_, -1, name.c_str()));
+        lua_pop(L, 1);
+    }
+    pop();
+    return values;
+}
+
 } // namespace netsculpt::lua

@@ -55,14 +55,17 @@ int w_add_rail(Call& call) {
     return 1;
 }
 
-/// doc:import_rails(path [, {units = "mm"}]) -> {rail, ...}: DXF, OBJ polylines or CSV.
+/// doc:import_rails(path [, {units = "mm", layers = {"RAIL", ...}}]) -> {rail, ...}: DXF, OBJ
+/// polylines or CSV.
 int w_import_rails(Call& call) {
     Document& doc = checkDocument(call);
     const std::string given = checkString(call, 2, "path");
     ImportOptions options;
     if (!lua_isnoneornil(call.L, 3)) {
-        const TableArgs args(call, 3, {"units"});
+        const TableArgs args(call, 3, {"units", "layers"});
         options.units = args.choice("units", unitNames(), std::string());
+        if (args.has("layers"))
+            options.layers = args.strings("layers");
     }
     const auto path = resolveReadPath(context(call.L), given, call.name);
     ImportRailsCommand command{given, importRailsFile(path, options)};

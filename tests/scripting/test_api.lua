@@ -83,6 +83,23 @@ T.case("import_rails from CSV", function()
   T.raises(function() doc:import_rails(T.data("none.csv")) end, "import_rails:", "none.csv")
 end)
 
+T.case("import_rails: layers chooses the DXF layers to read", function()
+  local doc = ns.new()
+  local file = T.data("frozen_layer.dxf") -- LINE 3 m long on R, LINE 4 m long on frozen H
+  local drawn = doc:import_rails(file, {units = "m"})
+  T.eq(#drawn, 1)
+  T.eq(drawn[1]:info().name, "R:#1")
+  local chosen = doc:import_rails(file, {units = "m", layers = {"h"}})
+  T.eq(#chosen, 1)
+  T.eq(chosen[1]:info().name, "H:#2")
+  T.near(chosen[1]:info().length, 4, 1e-15)
+  T.raises(function() doc:import_rails(file, {units = "m", layers = {"X"}}) end,
+           "the layer 'X'", "its layers are H, R")
+  T.raises(function() doc:import_rails(file, {units = "m", layers = {}}) end,
+           "layers", "non-empty list of strings")
+  T.raises(function() doc:import_rails(file, {units = "m", layers = "R"}) end, "layers")
+end)
+
 T.case("pieces: attach, gears, split, seams, sizes", function()
   local doc = ns.new()
   local ring = doc:add_rail{name = "ring", points = T.circle(2, 5, 64), closed = true}
