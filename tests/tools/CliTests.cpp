@@ -160,6 +160,15 @@ TEST_CASE("run: exit code 0 with outputs and a journal, 1 with a one-line messag
                " --out " + quoted(dir / "out") + " -q -- --no-relax two");
     CHECK(args.exitCode == 0);
     CHECK_THAT(args.output, Contains("--no-relax\ttwo\t2"));
+    // Plain arguments before --, dashed ones after it: all of them, in order.
+    const Ran mixed = runCli("run " + quoted(dir / "args.lua") + " --out " + quoted(dir / "out") +
+                             " -q one -- --quick");
+    CHECK(mixed.exitCode == 0);
+    CHECK_THAT(mixed.output, Contains("one\t--quick\t2"));
+    // A dashed argument without -- is a usage error that says where it goes.
+    const Ran dashed = runCli("run " + quoted(dir / "args.lua") + " --quick");
+    CHECK(dashed.exitCode == 2);
+    CHECK_THAT(dashed.output, Contains("go after --: netsculpt run SCRIPT -- --quick"));
 
     const Ran backend = runCli(
         "run " +
@@ -233,6 +242,12 @@ TEST_CASE("replay, to-lua, relax, export and report on a journal", "[cli]") {
                              " --tolerance 1e-2 --max-seconds 20 --out " + quoted(dir / "relaxed"));
     CHECK(relax.exitCode == 0);
     CHECK_THAT(relax.output, Contains("converged"));
+    // With -v the result line is still said once (it is the command's output).
+    const Ran verbose = runCli("-v relax " + quoted(journal) +
+                               " --tolerance 1e-2 --max-seconds 20 --out " + quoted(dir / "v"));
+    const std::string::size_type first = verbose.output.find("converged after");
+    CHECK(first != std::string::npos);
+    CHECK(verbose.output.find("converged after", first + 1) == std::string::npos);
     const fs::path snapshot = dir / "relaxed" / "small.nets";
     CHECK(fs::is_regular_file(snapshot));
     // Stopped short of the tolerance: exit 3, the shape written all the same.

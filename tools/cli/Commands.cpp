@@ -92,6 +92,27 @@ lua::ScriptOptions scriptOptions(const RunArgs& a, const fs::path& out, Progress
 
 } // namespace
 
+namespace {
+
+/// "about 12000 Lua instructions"; they are counted a thousand at a time.
+std::string instructionsText(std::uint64_t instructions) {
+    if (instructions == 0)
+        return "fewer than 1000 Lua instructions";
+    return "about " + std::to_string(instructions) + " Lua instructions";
+}
+
+/// "340 KiB", "12.5 MiB".
+std::string memoryText(std::size_t bytes) {
+    char text[32];
+    if (bytes < (1 << 20))
+        std::snprintf(text, sizeof text, "%zu KiB", (bytes + 1023) / 1024);
+    else
+        std::snprintf(text, sizeof text, "%.1f MiB", double(bytes) / (1 << 20));
+    return text;
+}
+
+} // namespace
+
 int runScript(const RunArgs& a, Verbosity verbosity) {
     std::error_code error;
     if (fs::is_directory(a.script, error))
@@ -129,9 +150,9 @@ int runScript(const RunArgs& a, Verbosity verbosity) {
             std::fprintf(stderr, "netsculpt: journal %s\n", journal.string().c_str());
     }
     if (verbosity == Verbosity::Verbose)
-        std::fprintf(stderr, "netsculpt: about %llu Lua instructions, peak Lua memory %.1f MiB\n",
-                     static_cast<unsigned long long>(result.instructions),
-                     double(result.peakMemory) / (1 << 20));
+        std::fprintf(stderr, "netsculpt: %s, peak Lua memory %s\n",
+                     instructionsText(result.instructions).c_str(),
+                     memoryText(result.peakMemory).c_str());
     return 0;
 }
 
@@ -180,7 +201,7 @@ int relaxDocument(const RelaxArgs& a, Verbosity verbosity) {
     if (progress.enabled())
         options.solver.progress = [&progress](const RelaxProgress& p) { progress.update(p); };
     const RelaxResult result = doc.relax(options);
-    progress.finish(result);
+    progress.clear(); // the result is this command's output, below: not also a message
     doc.saveSnapshot(snapshot);
     std::cout << a.document.string() << ": " << describeRelaxResult(result) << "\n";
     if (verbosity != Verbosity::Quiet)
@@ -211,7 +232,7 @@ int relaxUnlessRelaxed(Document& doc, const fs::path& document, bool relaxFirst,
     if (progress.enabled())
         options.solver.progress = [&progress](const RelaxProgress& p) { progress.update(p); };
     const RelaxResult result = doc.relax(options);
-    progress.finish(result);
+    progress.clear(); // said once, below
     if (verbosity != Verbosity::Quiet || !result.converged)
         std::cerr << "netsculpt: " << document.string()
                   << " holds no relaxed shape; relaxed it for " << purpose << ": "

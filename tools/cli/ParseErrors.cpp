@@ -63,6 +63,9 @@ std::string describeParseError(const CLI::App& app, const CLI::ParseError& e) {
         if (argument.starts_with("--"))
             if (const std::string near = nearestOption(command, argument); !near.empty())
                 return text + " (" + argument + ": did you mean " + near + "?)";
+    if (command.get_name() == "run" && extra.front().starts_with("-"))
+        return text + " (a script's own arguments that start with - go after --: netsculpt run " +
+               "SCRIPT -- " + extra.front() + ")";
     return text;
 }
 

@@ -18,13 +18,14 @@ class ProgressLine {
     void update(const RelaxProgress& progress);
     /// Clears the line; in verbose mode prints a summary of the result.
     void finish(const RelaxResult& result);
+    /// Clears the line only, for a command whose output is the result itself.
+    void clear();
     bool enabled() const { return enabled_; }
 
   private:
     bool enabled_ = false;
     bool verbose_ = false;
     bool shown_ = false;
-    void clear();
 };
 
 /// "converged in 1234 steps, 2.1 s, residual 8.1e-07 (rk4)" / "stopped (time limit) after ...".

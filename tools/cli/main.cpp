@@ -13,6 +13,7 @@
 #include <cmath>
 #include <iostream>
 #include <new>
+#include <string_view>
 
 #ifndef NETSCULPT_VERSION
 #define NETSCULPT_VERSION "unknown"
@@ -199,6 +200,20 @@ int dispatch(const CLI::App& app, const Options& o) {
     return reportDocument(args, verbosity);
 }
 
+/// Where `run`'s script arguments after `--` start in argv (argc when there are none). CLI11
+/// drops them once the script's list has a value before the `--` (`run s.lua a -- --quick`), so
+/// main parses the rest and appends these.
+int scriptArgumentsAfterDashes(int argc, char** argv) {
+    bool run = false;
+    for (int i = 1; i < argc; ++i) {
+        const std::string_view arg = argv[i];
+        run = run || arg == "run";
+        if (arg == "--")
+            return run ? i : argc;
+    }
+    return argc;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -206,7 +221,9 @@ int main(int argc, char** argv) {
     CLI::App app{"netsculpt: design knotted-rope net sculptures hung from rails", "netsculpt"};
     Options o;
     app.set_version_flag("--version", "netsculpt " NETSCULPT_VERSION);
-    app.add_flag("--quiet,-q", o.quiet, "No progress line or messages, only errors");
+    app.add_flag("--quiet,-q", o.quiet,
+                 "No progress line or messages, only errors (a command's result on stdout, such "
+                 "as relax's result line, still prints)");
     app.add_flag("--verbose,-v", o.verbose, "More messages (relaxation summaries, Lua tracebacks)");
     app.require_subcommand(1);
     app.fallthrough();
@@ -215,8 +232,11 @@ int main(int argc, char** argv) {
     addRelax(app, o);
     addExport(app, o);
     addReport(app, o);
+    const int dashes = scriptArgumentsAfterDashes(argc, argv);
     try {
-        app.parse(argc, argv);
+        app.parse(dashes, argv);
+        for (int i = dashes + 1; i < argc; ++i)
+            o.run.args.emplace_back(argv[i]);
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
     } catch (const CLI::CallForAllHelp& e) {
