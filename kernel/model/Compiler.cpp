@@ -260,8 +260,34 @@ class Builder {
         const Upper& u1 = uppers[1];
         const double fraction = u0.fraction >= 0 ? u0.fraction : 0.5;
         const double l = 0.5 * (u0.length + u1.length);
-        pos[k] = hangBetween(pos[u0.knot], pos[u1.knot], fraction, l, piece, ref.row, ref.column);
+        try {
+            pos[k] = hangBetween(pos[u0.knot], pos[u1.knot], fraction, l, piece, ref.row,
+                                 ref.column);
+        } catch (const UserError& e) {
+            throw UserError(e.what() + acrossPiecesText(u0.knot, u1.knot, piece.id));
+        }
         checkPlaced(pos[k], l, piece, ref.row, ref.column);
+    }
+
+    /// When a knot hangs from the last rows of two pieces side by side (a child below split
+    /// parts): "; it hangs from piece 1 row 39 (at z = 4.1 m) and piece 3 row 29 (at z = 6.3
+    /// m): ..." - the cause when those rows end at different heights. Empty otherwise.
+    std::string acrossPiecesText(std::uint32_t a, std::uint32_t b, PieceId below) const {
+        const MassSpringSystem& sys = out_.system;
+        const KnotRef& ra = sys.refs[sys.refStart[a]];
+        const KnotRef* rb = &sys.refs[sys.refStart[b]];
+        for (std::uint32_t i = sys.refStart[b]; i < sys.refStart[b + 1]; ++i)
+            if (sys.refs[i].piece != ra.piece && sys.refs[i].piece != below)
+                rb = &sys.refs[i]; // a seam knot: named in the other piece
+        if (rb->piece == ra.piece)
+            return "";
+        const auto knot = [&](const KnotRef& r, std::uint32_t k) {
+            return toString(r.piece) + " row " + std::to_string(r.row) + " (at z = " +
+                   formatNumber(sys.position[k].z) + " m)";
+        };
+        return "; it hangs from " + knot(ra, a) + " and " + knot(*rb, b) +
+               ": pieces side by side whose last rows end at different heights leave the row "
+               "hanging from both too short to span the step";
     }
 
     /// Kahn's order over "hangs from": a knot is placed once every knot it hangs from is.

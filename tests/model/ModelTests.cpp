@@ -202,6 +202,22 @@ TEST_CASE("a gear that does not divide is refused with the allowed gears") {
     CHECK(sameModel(before, t.s));
 }
 
+TEST_CASE("a row too short to span split parts of different heights says which rows it hangs from") {
+    // A ring of 48 columns, 30 rows of 0.25 m, a gear-2 child of 0.2 m bars, split at 12: the
+    // part from column 0 made 40 rows long ends 10 rows lower than the other, and the child's
+    // knot between the two last rows cannot reach across (DESIGN.md Eq. 2).
+    Tube t = tube(48, 30, 2.0, 0.25);
+    edit(t.s, [&](Sculpture& m) { return attachToPiece(m, {t.piece, {2, 1}, 20, 0.2}); });
+    edit(t.s, [&](Sculpture& m) { return split(m, t.piece, 12); });
+    const Sculpture before = t.s;
+    REQUIRE_THROWS_WITH(edit(t.s, [&](Sculpture& m) { setRows(m, t.piece, 40); return 0; }),
+                        Contains("is not above half the spacing") &&
+                            Contains("it hangs from piece 1 row 39") &&
+                            Contains("and piece 3 row 29") &&
+                            Contains("last rows end at different heights"));
+    CHECK(sameModel(before, t.s));
+}
+
 namespace {
 
 /// Sorted (position, rest length) fingerprint of a compiled system, for "nothing changed".
