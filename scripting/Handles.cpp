@@ -47,8 +47,9 @@ int documentToString(lua_State* L) {
         return 1;
     }
     const Sculpture& s = box->doc.sculpture();
-    lua_pushfstring(L, "netsculpt sculpture (%d rails, %d pieces)", int(s.rails.size()),
-                    int(s.pieces.size()));
+    const int rails = int(s.rails.size()), pieces = int(s.pieces.size());
+    lua_pushfstring(L, "netsculpt sculpture (%d rail%s, %d piece%s)", rails, rails == 1 ? "" : "s",
+                    pieces, pieces == 1 ? "" : "s");
     return 1;
 }
 

@@ -374,6 +374,19 @@ class Builder {
             sys.mass[sys.barA[b]] += half;
             sys.mass[sys.barB[b]] += half;
         }
+        for (std::size_t k = 0; k < sys.knotCount(); ++k)
+            if (!(sys.mass[k] > 0))
+                throwWeightless(k);
+    }
+
+    /// A knot without bars (a piece of one row on a rail) and of knot_mass 0 would weigh
+    /// nothing, which no relaxation, report or snapshot accepts: the edit is refused instead.
+    [[noreturn]] void throwWeightless(std::size_t k) const {
+        const KnotRef& ref = out_.system.refs[out_.system.refStart[k]];
+        throw UserError(toString(ref.piece) + ": the knot at row " + std::to_string(ref.row) +
+                        ", column " + std::to_string(ref.column) +
+                        " has no bars and knot_mass 0 kg, so it would weigh nothing; give the "
+                        "piece a knot_mass above 0 (or more rows)");
     }
 };
 

@@ -202,6 +202,22 @@ TEST_CASE("a gear that does not divide is refused with the allowed gears") {
     CHECK(sameModel(before, t.s));
 }
 
+TEST_CASE("a knot that would weigh nothing is refused, naming it") {
+    // A piece of one row has no bars: with knot_mass 0 its knots weigh nothing, which no
+    // relaxation, report or snapshot accepts. With two rows every knot has half a bar's rope.
+    Tube one = tube(12, 1, 2.0, 0.8);
+    Material weightlessKnots = one.s.pieces.at(one.piece).material;
+    weightlessKnots.knotMass = 0;
+    const Sculpture before = one.s;
+    REQUIRE_THROWS_WITH(
+        edit(one.s, [&](Sculpture& m) { setMaterial(m, one.piece, weightlessKnots); return 0; }),
+        Contains("piece 1: the knot at row 0, column 0 has no bars and knot_mass 0 kg"));
+    CHECK(sameModel(before, one.s));
+    Tube two = tube(12, 2, 2.0, 0.8);
+    edit(two.s, [&](Sculpture& m) { setMaterial(m, two.piece, weightlessKnots); return 0; });
+    CHECK(two.s.pieces.at(two.piece).material.knotMass == 0);
+}
+
 TEST_CASE("a row too short to span split parts of different heights says which rows it hangs from") {
     // A ring of 48 columns, 30 rows of 0.25 m, a gear-2 child of 0.2 m bars, split at 12: the
     // part from column 0 made 40 rows long ends 10 rows lower than the other, and the child's
