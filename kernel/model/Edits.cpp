@@ -170,6 +170,12 @@ std::pair<PieceId, PieceId> split(Sculpture& s, PieceId id, int column) {
         throw UserError("split: column must be from 1 to " + std::to_string(last) + " for " + toString(id) + " (" +
                         std::to_string(c) + " columns, " + (a.closed ? "closed" : "open") + "), got " +
                         std::to_string(column));
+    // Seamed pieces vary their bar length by column (set_bar_length's rule): a profile by row
+    // would be rescaled on one side of the seam by the next set_rows of one part.
+    if (a.bar.axis == BarAxis::Row && a.bar.first != a.bar.last)
+        throw UserError("split: " + toString(id) +
+                        " varies its bar length by row, and seamed pieces vary it by column; set "
+                        "its bar length by column (or to one length) before splitting it");
     const bool wasClosed = a.closed;
     Piece b = a;
     b.id = PieceId(s.nextPieceId++);
@@ -177,7 +183,7 @@ std::pair<PieceId, PieceId> split(Sculpture& s, PieceId id, int column) {
     b.colour = paletteColour(b.id);
     b.columns = wasClosed ? c - column + 1 : c - column;
     b.closed = false;
-    if (b.bar.axis == BarAxis::Column) { // a profile by row is the same in both parts
+    if (b.bar.axis == BarAxis::Column) { // a profile by row has one length: the same in both
         b.bar.from -= column;
         b.bar.to -= column;
     }
