@@ -103,6 +103,15 @@ class CollectorPause {
     bool wasRunning_;
 };
 
+/// Whether the value at (absolute) `index` is the netsculpt module itself: `ns:new()` passes it.
+bool isModuleTable(lua_State* L, int index) {
+    lua_getfield(L, LUA_REGISTRYINDEX, LUA_LOADED_TABLE);
+    lua_getfield(L, -1, "netsculpt");
+    const bool same = lua_istable(L, index) && lua_rawequal(L, index, -1);
+    lua_pop(L, 2);
+    return same;
+}
+
 /// Refuses a call with more arguments than its closure's limit (setClosures' upvalues 2 and 3;
 /// a closure without them takes any).
 void checkArgumentCount(const Call& call) {
@@ -118,6 +127,9 @@ void checkArgumentCount(const Call& call) {
     const int given = last - first + 1;
     if (given <= limit || (arguments == kKeywordTable && !lua_istable(L, first)))
         return;
+    if (first == 1 && isModuleTable(L, 1))
+        call.fail(std::string("call it as ns.") + call.name + "(...) (with a dot): ns:" +
+                  call.name + "(...) passes the module itself as a first argument");
     std::string extra;
     for (int i = first + limit; i <= last; ++i)
         extra += (extra.empty() ? "" : ", ") + describe(L, i);
@@ -179,10 +191,12 @@ void setMethods(lua_State* L, std::initializer_list<Function> methods) {
 
 std::int64_t checkWhole(const Call& call, int index, const char* arg, std::int64_t min,
                         std::int64_t max) {
-    const std::string range = max == INT32_MAX || max == INT64_MAX
-                                  ? ">= " + std::to_string(min)
-                                  : "from " + std::to_string(min) + " to " + std::to_string(max);
-    const std::string expected = "a whole number " + range;
+    const bool anyMin = min == INT32_MIN || min == INT64_MIN, anyMax = max == INT32_MAX || max == INT64_MAX;
+    const std::string range = anyMin && anyMax ? ""
+                              : anyMax         ? " >= " + std::to_string(min)
+                              : anyMin         ? " <= " + std::to_string(max)
+                                       : " from " + std::to_string(min) + " to " + std::to_string(max);
+    const std::string expected = "a whole number" + range;
     if (lua_type(call.L, index) != LUA_TNUMBER)
         call.bad(arg, index, expected);
     std::int64_t value = 0;

@@ -8,6 +8,19 @@ namespace netsculpt::lua {
 
 namespace {
 
+/// {r, g, b} by name and by index (colour.r is colour[1]), as set_colour takes it.
+void pushColour(lua_State* L, const Colour& c) {
+    lua_createtable(L, 3, 3);
+    const double channels[3] = {c.r, c.g, c.b};
+    static const char* const kNames[3] = {"r", "g", "b"};
+    for (int i = 0; i < 3; ++i) {
+        lua_pushnumber(L, channels[i]);
+        lua_rawseti(L, -2, i + 1);
+        lua_pushnumber(L, channels[i]);
+        lua_setfield(L, -2, kNames[i]);
+    }
+}
+
 void pushMaterial(lua_State* L, const Material& m) {
     lua_createtable(L, 0, 4);
     setNumber(L, "stiffness", m.stiffness);
@@ -75,7 +88,7 @@ void pushPieceInfo(lua_State* L, int docIndex, const Sculpture& s, PieceId id) {
     lua_setfield(L, -2, "bar_lengths");
     pushMaterial(L, p.material);
     lua_setfield(L, -2, "material");
-    pushVec3(L, {p.colour.r, p.colour.g, p.colour.b});
+    pushColour(L, p.colour);
     lua_setfield(L, -2, "colour");
     pushTop(L, docIndex, p);
     lua_setfield(L, -2, "top");

@@ -153,6 +153,10 @@ PieceId attachToPiece(Sculpture& s, const AttachToPieceArgs& a) {
     checkLength(a.bar, "bar length");
     ParentEdge edge{{a.parent}, a.gear, parent.closed, 0, true};
     const int columns = gearedColumns(parent.columns, parent.closed, a.gear);
+    if (columns < (parent.closed ? 3 : 2))
+        throw UserError("attach_to_piece: gear " + toString(a.gear) + " below " + toString(a.parent) +
+                        "'s " + std::to_string(parent.columns) + " columns gives " +
+                        std::to_string(columns) + (parent.closed ? ", and a closed tube needs 3" : ", and an open sheet needs 2"));
     Piece p = newPiece(s, a.rows, a.bar);
     p.columns = columns;
     p.closed = parent.closed;
@@ -166,6 +170,9 @@ std::pair<PieceId, PieceId> split(Sculpture& s, PieceId id, int column) {
     Piece& a = s.piece(id);
     const int c = a.columns;
     const int last = a.closed ? c - 1 : c - 2;
+    if (last < 1)
+        throw UserError("split: " + toString(id) + " is an open piece of " + std::to_string(c) +
+                        " columns, which has no column to split at (an open piece needs 3)");
     if (column < 1 || column > last)
         throw UserError("split: column must be from 1 to " + std::to_string(last) + " for " + toString(id) + " (" +
                         std::to_string(c) + " columns, " + (a.closed ? "closed" : "open") + "), got " +

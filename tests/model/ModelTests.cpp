@@ -202,6 +202,22 @@ TEST_CASE("a gear that does not divide is refused with the allowed gears") {
     CHECK(sameModel(before, t.s));
 }
 
+TEST_CASE("a split or a gear that leaves too few columns says so in the piece's terms") {
+    Sculpture s;
+    const RailId line = edit(s, [](Sculpture& m) {
+        return addRail(m, "line", lineRail({0, 0, 3}, {1, 0, 3}));
+    });
+    const PieceId narrow = edit(s, [&](Sculpture& m) {
+        return attachToRail(m, {line, 2, 0, 2, 0.6, 0, false});
+    });
+    REQUIRE_THROWS_WITH(edit(s, [&](Sculpture& m) { return split(m, narrow, 1); }),
+                        Contains("is an open piece of 2 columns, which has no column to split at"));
+    Tube t = tube(6, 3, 1.0, 0.6);
+    REQUIRE_THROWS_WITH(
+        edit(t.s, [&](Sculpture& m) { return attachToPiece(m, {t.piece, {1, 3}, 2, 0.6}); }),
+        Contains("gear 1/3 below piece 1's 6 columns gives 2, and a closed tube needs 3"));
+}
+
 TEST_CASE("a knot that would weigh nothing is refused, naming it") {
     // A piece of one row has no bars: with knot_mass 0 its knots weigh nothing, which no
     // relaxation, report or snapshot accepts. With two rows every knot has half a bar's rope.
