@@ -1,6 +1,7 @@
 // glTF 2.0 binary (.glb) through tinygltf: bars as lines (or tubes) coloured by tension, rails as
-// dark lines. This translation unit holds tinygltf's implementation; it is built without stb
-// (no images are read or written), so stb's only copy is the static one in Raster.cpp.
+// dark lines; each piece a mesh and a node of its own under the root, which turns z up to glTF's
+// y up. This translation unit holds tinygltf's implementation; it is built without stb (no
+// images are read or written), so stb's only copy is the static one in Raster.cpp.
 
 #define TINYGLTF_IMPLEMENTATION
 #define TINYGLTF_NO_STB_IMAGE
@@ -14,6 +15,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <sstream>
 
 namespace netsculpt::io {
@@ -95,14 +97,87 @@ void push(std::vector<float>& out, const Rgb& srgb) {
 
 } // namespace
 
-std::string glbBytes(const ExportInput& in) {
-    const double radius = in.options.tubeRadius;
-    if (!(std::isfinite(radius) && radius >= 0))
-        throw UserError("tube_radius must be a finite number >= 0 (m), got " +
-                        formatNumber(radius));
-    const std::string colourBy = in.options.colourBy == "piece" ? "piece" : "tension";
-    const Scene scene = buildScene(in.sculpture, in.compiled, colourBy, in.status.relaxed);
-    Builder g;
+namespace {
+
+/// One piece's bars, or the rails: a mesh of its own and a node, so that a 3D or CAD program can
+/// pick each piece apart.
+struct Group {
+    std::string name;
+    std::vector<float> positions, colours, tension; ///< lines: two vertices a segment
+    TubeMesh tubes;
+    std::vector<float> tubeColours;
+};
+
+/// The scene's segments grouped by piece, in the order of their first bar, then the rails.
+std::vector<Group> groupSegments(const ExportInput& in, const Scene& scene, double radius) {
+    std::vector<Group> groups;
+    std::map<std::uint32_t, std::size_t> groupOfPiece;
+    Group rails{"rails", {}, {}, {}, {}, {}};
+    const Vec3 origin = in.compiled.system.origin;
+    for (SceneSegment seg : scene.segments) {
+        // Floats from the system's origin, which the root node's translation adds back (in site
+        // coordinates a float of the sculpture's own would be off by up to half a metre).
+        seg.a -= origin;
+        seg.b -= origin;
+        Group* group = &rails;
+        if (!seg.rail) {
+            const PieceId piece = in.compiled.system.barPiece[seg.bar];
+            const auto [at, added] = groupOfPiece.emplace(piece.value, groups.size());
+            if (added)
+                groups.push_back({toString(piece) + " (" + in.sculpture.pieces.at(piece).name +
+                                      ")",
+                                  {}, {}, {}, {}, {}});
+            group = &groups[at->second];
+        }
+        if (!seg.rail && radius > 0) {
+            const std::size_t before = group->tubes.vertices.size();
+            appendTube(group->tubes, seg.a, seg.b, radius);
+            for (std::size_t i = before; i < group->tubes.vertices.size(); ++i)
+                push(group->tubeColours, seg.colour);
+            continue;
+        }
+        push(group->positions, seg.a);
+        push(group->positions, seg.b);
+        push(group->colours, seg.colour);
+        push(group->colours, seg.colour);
+        if (!seg.rail)
+            group->tension.insert(group->tension.end(), 2, float(scene.tension[seg.bar]));
+    }
+    groups.push_back(std::move(rails));
+    return groups;
+}
+
+tinygltf::Primitive linesPrimitive(Builder& g, const Group& group) {
+    tinygltf::Primitive p;
+    p.mode = TINYGLTF_MODE_LINE;
+    p.material = 0;
+    p.attributes["POSITION"] = g.floats(group.positions, TINYGLTF_TYPE_VEC3, 3, true);
+    p.attributes["COLOR_0"] = g.floats(group.colours, TINYGLTF_TYPE_VEC3, 3);
+    if (!group.tension.empty())
+        p.attributes["_TENSION"] = g.floats(group.tension, TINYGLTF_TYPE_SCALAR, 1);
+    return p;
+}
+
+tinygltf::Primitive tubesPrimitive(Builder& g, const Group& group) {
+    std::vector<float> positions, normals;
+    std::vector<std::uint32_t> indices;
+    for (const Vec3& v : group.tubes.vertices)
+        push(positions, v);
+    for (const Vec3& n : group.tubes.normals)
+        push(normals, n);
+    for (const auto& t : group.tubes.triangles)
+        indices.insert(indices.end(), t.begin(), t.end());
+    tinygltf::Primitive p;
+    p.mode = TINYGLTF_MODE_TRIANGLES;
+    p.material = 0;
+    p.attributes["POSITION"] = g.floats(positions, TINYGLTF_TYPE_VEC3, 3, true);
+    p.attributes["NORMAL"] = g.floats(normals, TINYGLTF_TYPE_VEC3, 3);
+    p.attributes["COLOR_0"] = g.floats(group.tubeColours, TINYGLTF_TYPE_VEC3, 3);
+    p.indices = g.indices(indices);
+    return p;
+}
+
+void addMaterial(Builder& g) {
     g.model.materials.emplace_back();
     tinygltf::Material& material = g.model.materials.back();
     material.name = "rope";
@@ -111,79 +186,43 @@ std::string glbBytes(const ExportInput& in) {
     material.pbrMetallicRoughness.roughnessFactor = 1;
     material.extensions["KHR_materials_unlit"] = tinygltf::Value(tinygltf::Value::Object());
     g.model.extensionsUsed.push_back("KHR_materials_unlit");
+}
 
-    tinygltf::Mesh mesh;
-    mesh.name = "netsculpt";
-    std::vector<float> barPositions, barColours, barTension, railPositions, railColours;
-    TubeMesh tubes;
-    std::vector<float> tubeColours;
-    // Vertices are floats: they are written from the system's origin, which the root node's
-    // translation adds back (in site coordinates a float of the sculpture's own would be off by
-    // up to half a metre).
+} // namespace
+
+std::string glbBytes(const ExportInput& in) {
+    const double radius = in.options.tubeRadius;
+    if (!(std::isfinite(radius) && radius >= 0))
+        throw UserError("tube_radius must be a finite number >= 0 (m), got " +
+                        formatNumber(radius));
+    const std::string colourBy = in.options.colourBy == "piece" ? "piece" : "tension";
+    const Scene scene = buildScene(in.sculpture, in.compiled, colourBy, in.status.relaxed);
+    Builder g;
+    addMaterial(g);
+
     const Vec3 origin = in.compiled.system.origin;
-    for (SceneSegment seg : scene.segments) {
-        seg.a -= origin;
-        seg.b -= origin;
-        std::vector<float>& positions = seg.rail ? railPositions : barPositions;
-        std::vector<float>& colours = seg.rail ? railColours : barColours;
-        if (!seg.rail && radius > 0) {
-            const std::size_t before = tubes.vertices.size();
-            appendTube(tubes, seg.a, seg.b, radius);
-            for (std::size_t i = before; i < tubes.vertices.size(); ++i)
-                push(tubeColours, seg.colour);
-            continue;
-        }
-        push(positions, seg.a);
-        push(positions, seg.b);
-        push(colours, seg.colour);
-        push(colours, seg.colour);
-        if (!seg.rail)
-            barTension.insert(barTension.end(), 2, float(scene.tension[seg.bar]));
-    }
-    const auto lines = [&](const std::vector<float>& positions, const std::vector<float>& colours,
-                           const std::vector<float>* tension) {
-        if (positions.empty())
-            return;
-        tinygltf::Primitive p;
-        p.mode = TINYGLTF_MODE_LINE;
-        p.material = 0;
-        p.attributes["POSITION"] = g.floats(positions, TINYGLTF_TYPE_VEC3, 3, true);
-        p.attributes["COLOR_0"] = g.floats(colours, TINYGLTF_TYPE_VEC3, 3);
-        if (tension)
-            p.attributes["_TENSION"] = g.floats(*tension, TINYGLTF_TYPE_SCALAR, 1);
-        mesh.primitives.push_back(p);
-    };
-    lines(barPositions, barColours, &barTension);
-    if (!tubes.triangles.empty()) {
-        std::vector<float> positions, normals;
-        std::vector<std::uint32_t> indices;
-        for (const Vec3& v : tubes.vertices)
-            push(positions, v);
-        for (const Vec3& n : tubes.normals)
-            push(normals, n);
-        for (const auto& t : tubes.triangles)
-            indices.insert(indices.end(), t.begin(), t.end());
-        tinygltf::Primitive p;
-        p.mode = TINYGLTF_MODE_TRIANGLES;
-        p.material = 0;
-        p.attributes["POSITION"] = g.floats(positions, TINYGLTF_TYPE_VEC3, 3, true);
-        p.attributes["NORMAL"] = g.floats(normals, TINYGLTF_TYPE_VEC3, 3);
-        p.attributes["COLOR_0"] = g.floats(tubeColours, TINYGLTF_TYPE_VEC3, 3);
-        p.indices = g.indices(indices);
-        mesh.primitives.push_back(p);
-    }
-    lines(railPositions, railColours, nullptr);
-
     tinygltf::Node root;
     root.name = "netsculpt (z up)";
     root.rotation = {-std::sqrt(0.5), 0, 0, std::sqrt(0.5)}; // -90 deg about x: z up -> glTF's y up
     if (origin != Vec3{})
         root.translation = {origin.x, origin.z, -origin.y}; // the origin, turned the same way
-    if (!mesh.primitives.empty()) {
-        g.model.meshes.push_back(mesh);
-        root.mesh = 0;
-    }
     g.model.nodes.push_back(root);
+    for (const Group& group : groupSegments(in, scene, radius)) {
+        tinygltf::Mesh mesh;
+        mesh.name = group.name;
+        if (!group.positions.empty())
+            mesh.primitives.push_back(linesPrimitive(g, group));
+        if (!group.tubes.triangles.empty())
+            mesh.primitives.push_back(tubesPrimitive(g, group));
+        if (mesh.primitives.empty())
+            continue;
+        g.model.meshes.push_back(mesh);
+        tinygltf::Node node;
+        node.name = group.name;
+        node.mesh = int(g.model.meshes.size() - 1);
+        g.model.nodes.push_back(node);
+        g.model.nodes[0].children.push_back(int(g.model.nodes.size() - 1));
+    }
     tinygltf::Scene sceneNode;
     sceneNode.name = scene.title;
     sceneNode.nodes = {0};

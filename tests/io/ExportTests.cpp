@@ -143,7 +143,7 @@ TEST_CASE("exports in site coordinates: the CSV in the sculpture's, the glb's fl
     tinygltf::TinyGLTF loader;
     std::string error, warning;
     REQUIRE(loader.LoadBinaryFromFile(&model, &error, &warning, (dir / "net.glb").string()));
-    REQUIRE(model.nodes.size() == 1);
+    REQUIRE(model.nodes.size() == 4); // the root, the two pieces, the rail
     // z up turned to glTF's y up: (x, y, z) -> (x, z, -y), the translation too.
     CHECK(model.nodes[0].translation == std::vector<double>{512346, 235, -5412346});
     checkFirstBarEnd(model, sys);
@@ -200,33 +200,51 @@ TEST_CASE("glb loads back with tinygltf: two vertices per bar, colours, tension,
     std::string error, warning;
     REQUIRE(loader.LoadBinaryFromFile(&model, &error, &warning, file.string()));
     INFO(error << warning);
-    REQUIRE(model.meshes.size() == 1);
-    REQUIRE(model.meshes[0].primitives.size() == 2);
-    const tinygltf::Primitive& net = model.meshes[0].primitives[0];
-    CHECK(net.mode == TINYGLTF_MODE_LINE);
-    const tinygltf::Accessor& positions =
-        model.accessors[std::size_t(net.attributes.at("POSITION"))];
-    CHECK(positions.count == 2 * sys.barCount());
-    CHECK(positions.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT);
-    CHECK(model.accessors[std::size_t(net.attributes.at("COLOR_0"))].count == 2 * sys.barCount());
-    CHECK(model.accessors[std::size_t(net.attributes.at("_TENSION"))].count == 2 * sys.barCount());
+    // A mesh and a node per piece (the ring and its child), then the rails, under one root.
+    REQUIRE(model.meshes.size() == 3);
+    CHECK(model.meshes[0].name == "piece 1 (upper)");
+    CHECK(model.meshes[2].name == "rails");
+    std::size_t barVertices = 0;
+    for (std::size_t m = 0; m < 2; ++m) {
+        REQUIRE(model.meshes[m].primitives.size() == 1);
+        const tinygltf::Primitive& net = model.meshes[m].primitives[0];
+        CHECK(net.mode == TINYGLTF_MODE_LINE);
+        const tinygltf::Accessor& positions =
+            model.accessors[std::size_t(net.attributes.at("POSITION"))];
+        CHECK(positions.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT);
+        CHECK(model.accessors[std::size_t(net.attributes.at("COLOR_0"))].count == positions.count);
+        CHECK(model.accessors[std::size_t(net.attributes.at("_TENSION"))].count ==
+              positions.count);
+        barVertices += positions.count;
+    }
+    CHECK(barVertices == 2 * sys.barCount());
+    // The ring of 12 columns and 5 rows has 12 x 2 x 4 bars; its child the rest.
+    CHECK(model.accessors[std::size_t(model.meshes[0].primitives[0].attributes.at("POSITION"))]
+              .count == 2 * 12 * 2 * 4);
     checkFirstBarEnd(model, sys); // the first bar's first end is where the knot is (a float)
-    const tinygltf::Primitive& rails = model.meshes[0].primitives[1];
+    const tinygltf::Primitive& rails = model.meshes[2].primitives[0];
     CHECK(model.accessors[std::size_t(rails.attributes.at("POSITION"))].count ==
           2 * 12); // the ring's 12 segments
-    REQUIRE(model.nodes.size() == 1);
+    REQUIRE(model.nodes.size() == 4);
     CHECK(model.nodes[0].rotation.size() == 4);
+    CHECK(model.nodes[0].children == std::vector<int>{1, 2, 3});
+    CHECK(model.nodes[1].mesh == 0);
+    CHECK(model.nodes[1].name == "piece 1 (upper)");
 
     ExportOptions tubes;
     tubes.tubeRadius = 0.005;
     exportFile(t.s, t.compiled, {}, file, tubes);
     tinygltf::Model tubeModel;
     REQUIRE(loader.LoadBinaryFromFile(&tubeModel, &error, &warning, file.string()));
-    const tinygltf::Primitive& mesh = tubeModel.meshes[0].primitives[0];
-    CHECK(mesh.mode == TINYGLTF_MODE_TRIANGLES);
-    CHECK(tubeModel.accessors[std::size_t(mesh.attributes.at("POSITION"))].count ==
-          16 * sys.barCount());
-    CHECK(tubeModel.accessors[std::size_t(mesh.indices)].count == 3 * 16 * sys.barCount());
+    std::size_t tubeVertices = 0, tubeIndices = 0;
+    for (std::size_t m = 0; m < 2; ++m) {
+        const tinygltf::Primitive& mesh = tubeModel.meshes[m].primitives.at(0);
+        CHECK(mesh.mode == TINYGLTF_MODE_TRIANGLES);
+        tubeVertices += tubeModel.accessors[std::size_t(mesh.attributes.at("POSITION"))].count;
+        tubeIndices += tubeModel.accessors[std::size_t(mesh.indices)].count;
+    }
+    CHECK(tubeVertices == 16 * sys.barCount());
+    CHECK(tubeIndices == 3 * 16 * sys.barCount());
 }
 
 TEST_CASE("JSON document: rails, pieces, knots and bars with round-trip numbers, and the report") {
