@@ -142,8 +142,8 @@ struct Document::State {
         if (cleanIndex > std::ptrdiff_t(index)) cleanIndex = -1;
     }
     /// Commits a freshly compiled system for the new current state.
-    void installCompiled(CompiledSculpture next) {
-        if (warm) carryPositions(compiled, next);
+    void installCompiled(CompiledSculpture next, const KnotRenaming& renamed = {}) {
+        if (warm) carryPositions(compiled, next, renamed);
         compiled = std::move(next);
         relaxed = false;
     }
@@ -152,6 +152,15 @@ struct Document::State {
         e.kind = kind;
         e.seq = log.size() + 1;
         return e;
+    }
+
+    /// How `command` renamed knots it did not move: a split's right part (else none).
+    KnotRenaming renamingOf(const Command& command, const CommandResult& result) const {
+        const auto* split = std::get_if<SplitCommand>(&command);
+        if (split == nullptr || result.pieces.size() != 2 || !compiled.pieces.contains(split->piece))
+            return {};
+        return splitRenaming(split->piece, result.pieces[1], split->column,
+                             compiled.pieces.at(split->piece).columns);
     }
 
     /// Validate, apply, compile (unless replaying), journal, commit (DESIGN.md "Journal").
@@ -204,7 +213,7 @@ struct Document::State {
         }
         for (PieceId id : bornPieces) pieceBirth[id.value] = steps[index - 1].serial;
         for (RailId id : bornRails) railBirth[id.value] = steps[index - 1].serial;
-        if (next) installCompiled(std::move(*next));
+        if (next) installCompiled(std::move(*next), renamingOf(command, result));
         log.push_back(std::move(entry));
         gestureOpen = true;
         return result;
@@ -454,6 +463,11 @@ namespace {
 /// The name a backend reports for a requested backend ("auto" runs the fast path).
 std::string_view relaxerKey(std::string_view requested) { return requested == "auto" ? "fast" : requested; }
 } // namespace
+
+RelaxResult Document::relax() {
+    const DocumentRelaxOptions defaults;
+    return relax(defaults);
+}
 
 RelaxResult Document::relax(const DocumentRelaxOptions& options) {
     State& st = *state_;

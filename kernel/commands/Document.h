@@ -89,7 +89,10 @@ class Document {
     /// equilibrium at the material's stiffness. UserError when the count is not the knot count.
     void adoptPositions(std::vector<Vec3> positions, bool converged);
 
-    RelaxResult relax(const DocumentRelaxOptions& options = {});
+    RelaxResult relax(const DocumentRelaxOptions& options);
+    /// With the default options (an overload, not a default argument: g++ 12 warns on the
+    /// temporary's std::function when it is destroyed at the caller).
+    RelaxResult relax();
 
     /// FNV-1a over the model in a fixed order: equal hashes = the same sculpture.
     std::uint64_t hash() const;

@@ -472,13 +472,48 @@ void spreadRowsToRail(const MassSpringSystem& previousSystem, const PieceKnots& 
 
 } // namespace
 
-std::size_t carryPositions(const CompiledSculpture& previous, CompiledSculpture& next) {
+KnotRenaming splitRenaming(PieceId piece, PieceId right, int column, int columns) {
+    return [=](const KnotRef& ref) -> std::optional<KnotRef> {
+        if (ref.piece == piece)
+            return ref;
+        if (ref.piece == right)
+            return KnotRef{piece, ref.row, (ref.column + column) % columns};
+        return std::nullopt;
+    };
+}
+
+namespace {
+
+/// The position `previous` had for a knot its edit renamed, moved to next's origin.
+std::optional<Vec3> renamedPosition(const CompiledSculpture& previous, const KnotRef& ref,
+                                    const KnotRenaming& renamed, const Vec3& origin) {
+    if (!renamed)
+        return std::nullopt;
+    const std::optional<KnotRef> before = renamed(ref);
+    if (!before)
+        return std::nullopt;
+    const auto old = previous.pieces.find(before->piece);
+    if (old == previous.pieces.end() || before->row >= old->second.rows ||
+        before->column >= old->second.columns)
+        return std::nullopt;
+    return inOrigin(previous.system, old->second.at(before->row, before->column), origin);
+}
+
+} // namespace
+
+std::size_t carryPositions(const CompiledSculpture& previous, CompiledSculpture& next,
+                           const KnotRenaming& renamed) {
     MassSpringSystem& sys = next.system;
     const std::vector<Vec3> initial = sys.position;
     std::size_t carried = 0;
     for (std::size_t k = 0; k < sys.knotCount(); ++k) {
         if (sys.fixed[k]) continue;
         const KnotRef& ref = sys.refs[sys.refStart[k]];
+        if (const auto place = renamedPosition(previous, ref, renamed, sys.origin)) {
+            sys.position[k] = *place;
+            ++carried;
+            continue;
+        }
         auto old = previous.pieces.find(ref.piece);
         auto now = next.pieces.find(ref.piece);
         if (old == previous.pieces.end() || old->second.columns != now->second.columns) continue;

@@ -7,6 +7,8 @@
 #include "model/Sculpture.h"
 #include "physics/MassSpringSystem.h"
 
+#include <functional>
+#include <optional>
 #include <map>
 
 namespace netsculpt {
@@ -55,6 +57,14 @@ double railPosition(const RailEdge& edge, int column);
 /// knots of rows added below move with the last old row, except in a piece tied to a rail below,
 /// where the free rows from the old rail row down are spread evenly between the last row kept and
 /// the rail. Returns how many knots were carried.
-std::size_t carryPositions(const CompiledSculpture& previous, CompiledSculpture& next);
+/// `renamed`, when given, names a knot of `next` as `previous` had it, for an edit that renamed
+/// knots without moving them (a split: the right part's (row, c) was the piece's (row, c + k));
+/// nullopt when it had no other name.
+using KnotRenaming = std::function<std::optional<KnotRef>(const KnotRef&)>;
+std::size_t carryPositions(const CompiledSculpture& previous, CompiledSculpture& next,
+                           const KnotRenaming& renamed = {});
+/// The renaming of a split of `piece` at `column` into `piece` and `right`: `columns` and
+/// `closed` are the piece's before it.
+KnotRenaming splitRenaming(PieceId piece, PieceId right, int column, int columns);
 
 } // namespace netsculpt

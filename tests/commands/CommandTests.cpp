@@ -329,6 +329,31 @@ TEST_CASE("sixty rows added below a relaxed piece still relax from where the edi
     CHECK(result.converged);
 }
 
+TEST_CASE("a split keeps the relaxed shape: it renames knots, it does not move them") {
+    // A ring of 24 columns with a geared child, relaxed, then split at column 8: the right
+    // part's (row, c) is the ring's (row, c + 8), so every knot keeps its relaxed place and the
+    // next relaxation has nothing to do (before, the ring started again from Eq. 2).
+    Document doc;
+    doc.execute(AddRailCommand{"ring", ringRail({0, 0, 5}, 1.2, 48)});
+    doc.execute(attach(1, 24, 10, 0.2));
+    doc.execute(hang(1, Gear{2, 1}, 5, 0.15));
+    REQUIRE(doc.relax().converged);
+    const std::vector<Vec3> relaxed = doc.compiled().system.position;
+    doc.execute(SplitCommand{PieceId(1), 8});
+    CHECK(residual(doc.compiled().system) < 1e-6);
+    const RelaxResult again = doc.relax();
+    CHECK(again.converged);
+    CHECK(again.steps == 0);
+    // The same knots (a split changes none) at the same places, whatever their order.
+    std::vector<Vec3> now = doc.compiled().system.position, before = relaxed;
+    const auto order = [](const Vec3& a, const Vec3& b) {
+        return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+    };
+    std::sort(now.begin(), now.end(), order);
+    std::sort(before.begin(), before.end(), order);
+    CHECK(now == before);
+}
+
 TEST_CASE("merged commands are one undo step and equal doing both") {
     Document merged = fixtureDocument();
     Document separate = fixtureDocument();
