@@ -5,6 +5,9 @@
 
 namespace netsculpt::io {
 
+/// The application name of netsculpt's extended data (groups 1001/1000) and APPID table entry.
+inline constexpr const char* kDxfApplication = "NETSCULPT";
+
 inline bool isRealCode(int c) {
     return (c >= 10 && c <= 59) || (c >= 110 && c <= 149) || (c >= 210 && c <= 239) ||
            (c >= 460 && c <= 469) || (c >= 1010 && c <= 1059);

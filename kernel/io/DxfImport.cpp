@@ -132,6 +132,8 @@ class LayerChoice {
     }
 
     bool reads(const Placed& p) {
+        if (p.entity->netsculptBar())
+            return false; // a bar of a net netsculpt wrote (DxfExport.h), on any layer
         if (!asked_.empty()) {
             bool listed = asked_.count(folded(p.layer)) > 0;
             for (const auto& layer : p.insertLayers)

@@ -63,6 +63,7 @@ class Scanner {
     std::string block_;                         // the current block's name
     std::size_t blockEntities_ = 0, modelEntities_ = 0;
     DxfLayer layer_; // the LAYER table entry being read
+    bool netsculptData_ = false; // the entity's extended data being read is NETSCULPT's
 
     [[noreturn]] void fail(std::size_t line, const std::string& what) const {
         throw UserError(file_ + ": line " + std::to_string(line) + ": " + what);
@@ -188,6 +189,7 @@ class Scanner {
         entity_.block = section_ == "BLOCKS" ? block_ : std::string();
         entity_.index = section_ == "BLOCKS" ? blockEntities_++ : modelEntities_++;
         inEntity_ = true;
+        netsculptData_ = false;
     }
 
     /// "LWPOLYLINE on layer R (line 5)" in ENTITIES, "LEADER in the BLOCKS section (line 9)"
@@ -258,6 +260,10 @@ class Scanner {
             entity_.layer = std::string(trim(value));
         if (c == 67)
             entity_.paperSpace = trim(value) == "1";
+        if (c == 1001)
+            netsculptData_ = trim(value) == kDxfApplication;
+        if (c == 1000 && netsculptData_)
+            entity_.netsculptMark.emplace_back(value);
     }
 
     void checkCount(const DxfEntity& e, int declaredCode, int valueCode, const char* what) {
@@ -312,7 +318,13 @@ std::string DxfEntity::handleOrIndex() const {
 }
 
 std::string DxfEntity::railName() const {
+    if (netsculptMark.size() == 2 && netsculptMark[0] == "rail" && !netsculptMark[1].empty())
+        return netsculptMark[1];
     return concat({layer, ":", handleOrIndex()});
+}
+
+bool DxfEntity::netsculptBar() const {
+    return netsculptMark.size() == 1 && netsculptMark[0] == "bar";
 }
 
 DxfScan scanDxf(const std::string& file, const std::string& text) {

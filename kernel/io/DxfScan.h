@@ -24,6 +24,9 @@ struct DxfEntity {
     /// How many groups of code c (< 100) the entity holds: 10 = control points / vertices,
     /// 40 = knots, 41 = weights, 11 = fit points.
     std::array<int, 100> count{};
+    /// The strings (group 1000) of its extended data of application NETSCULPT, as written:
+    /// {"rail", NAME} on a rail netsculpt wrote, {"bar"} on a bar (DxfExport.h).
+    std::vector<std::string> netsculptMark;
     /// The first integer value of codes 60..99 (e.g. 72 = declared knot count); -1 = absent.
     std::array<long long, 40> integer;
 
@@ -33,8 +36,11 @@ struct DxfEntity {
     std::string describe() const;
     /// "2F", or "#N" (N = index + 1) when the file has no handles.
     std::string handleOrIndex() const;
-    /// "RAILS:2F", or "RAILS:#N" when the file has no handles.
+    /// "RAILS:2F", or "RAILS:#N" when the file has no handles; the name in netsculpt's mark
+    /// when the entity carries one.
     std::string railName() const;
+    /// A bar of a net netsculpt wrote (its mark says "bar"): not a rail.
+    bool netsculptBar() const;
 };
 
 /// An entry of the LAYER table.

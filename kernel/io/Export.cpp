@@ -2,6 +2,7 @@
 
 #include "io/Export.h"
 
+#include "io/DxfExport.h"
 #include "io/Exporters.h"
 #include "io/IoText.h"
 #include "io/Scene.h"
@@ -143,7 +144,7 @@ std::string jsonDocument(const ExportInput& in) {
 } // namespace io
 
 std::vector<std::string> exportFormats() {
-    return {"csv", "obj", "ply", "glb", "json", "svg", "png"};
+    return {"csv", "obj", "ply", "glb", "json", "svg", "png", "dxf"};
 }
 
 void checkExport(const std::filesystem::path& path, const ExportOptions& options) {
@@ -175,16 +176,32 @@ void exportFile(const Sculpture& sculpture, const CompiledSculpture& compiled,
         bytes = io::jsonDocument(in);
     else if (ext == "svg")
         bytes = io::svgText(in);
+    else if (ext == "dxf")
+        bytes = io::dxfText(sculpture, &compiled.system);
     else
         bytes = io::pngBytes(in);
     io::writeFileAtomically(path, bytes);
 }
 
-void exportRailsFile(const Sculpture& sculpture, const std::filesystem::path& path) {
+std::vector<std::string> railExportFormats() {
+    return {"csv", "obj", "dxf"};
+}
+
+void checkRailsExport(const std::filesystem::path& path) {
     const std::string ext = io::lowerExtension(path);
-    if (ext != "csv" && ext != "obj")
-        throw UserError(io::displayName(path) + ": rails are exported to .csv or .obj, not " +
+    const auto formats = railExportFormats();
+    if (std::find(formats.begin(), formats.end(), ext) == formats.end())
+        throw UserError(io::displayName(path) + ": rails are exported to .csv, .obj or .dxf, not " +
                         (ext.empty() ? "a file without extension" : "." + ext));
+}
+
+void exportRailsFile(const Sculpture& sculpture, const std::filesystem::path& path) {
+    checkRailsExport(path);
+    const std::string ext = io::lowerExtension(path);
+    if (ext == "dxf") {
+        io::writeFileAtomically(path, io::dxfText(sculpture, nullptr));
+        return;
+    }
     // Names must tell rails apart when read back (CSV groups rows by name).
     std::set<std::string> used;
     std::string out = ext == "csv" ? "rail,x,y,z\n" : "# netsculpt rails; metres, z up\n";

@@ -1,4 +1,4 @@
-// Rails from OBJ and CSV files (io/Import.h): round trips through exportRailsFile, the file
+// Rails from OBJ and CSV files (io/Import.h): round trips through exportRailsFile (DXF too), the file
 // formats' rules (headers, rail column, closed rails, units) and bad files.
 
 #include "IoTestSupport.h"
@@ -76,11 +76,12 @@ std::vector<NamedCurve> importText(const std::string& name, const std::string& t
 
 } // namespace
 
-TEST_CASE("rails exported to CSV and OBJ read back to the same points") {
+TEST_CASE("rails exported to CSV, OBJ and DXF read back to the same names, closure and points") {
     const Sculpture s = threeRails();
     const auto dir = outputDir("rail-round-trip");
     checkRoundTrip(s, dir / "rails.csv");
     checkRoundTrip(s, dir / "rails.OBJ");
+    checkRoundTrip(s, dir / "rails.dxf");
     // A polyline rail is its own vertices, so it comes back as the same rail.
     const auto rails = importRailsFile(dir / "rails.csv");
     CHECK(rails[0].curve.points == s.rails.begin()->second.curve().spec().points);
