@@ -1,5 +1,5 @@
 // Files out: doc:export(path, options), doc:report(), doc:write_report(path);
-// ns.export_formats(), ns.output_dir(), ns.script_dir().
+// ns.export_formats(), ns.rail_export_formats(), ns.output_dir(), ns.script_dir().
 
 #include "commands/Journal.h"
 #include "io/Export.h"
@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <optional>
 #include <stdexcept>
 
 namespace netsculpt::lua {
@@ -78,6 +79,8 @@ void pushJson(lua_State* L, const nlohmann::json& value) {
 const std::vector<std::string> kColourBy = {"piece", "tension"};
 const std::vector<std::string> kViews = {"top", "side", "front", "perspective", "all"};
 
+const char* const kExportKeys[] = {"colour_by", "tube_radius", "width", "height", "view"};
+
 /// The export options each format uses; others given are refused, not ignored.
 std::vector<std::string> optionsOf(const std::string& ext) {
     if (ext == "obj" || ext == "ply") return {"tube_radius"};
@@ -86,25 +89,24 @@ std::vector<std::string> optionsOf(const std::string& ext) {
     return {};
 }
 
-void checkOptionsFor(const Call& call, const TableArgs& args, const std::string& ext) {
-    const std::vector<std::string> used = optionsOf(ext);
-    for (const char* key : {"colour_by", "tube_radius", "width", "height", "view"}) {
+/// `what` is ".obj export" or "rails export".
+void checkOptionsFor(const Call& call, const TableArgs& args, const std::vector<std::string>& used,
+                     const std::string& what) {
+    for (const char* key : kExportKeys) {
         if (!args.has(key) || std::find(used.begin(), used.end(), key) != used.end())
             continue;
         std::string takes;
         for (const std::string& option : used)
             takes += (takes.empty() ? "" : ", ") + option;
-        call.fail("argument '" + std::string(key) + "' does not apply to a ." + ext + " export (" +
+        call.fail("argument '" + std::string(key) + "' does not apply to a " + what + " (" +
                   (takes.empty() ? "it takes no options" : "it takes " + takes) + ")");
     }
 }
 
-ExportOptions exportArgs(const Call& call, const std::string& ext) {
+
+ExportOptions exportArgs(const Call& call, const TableArgs& args, const std::string& ext) {
     ExportOptions o;
-    if (lua_isnoneornil(call.L, 3))
-        return o;
-    const TableArgs args(call, 3, {"colour_by", "tube_radius", "width", "height", "view"});
-    checkOptionsFor(call, args, ext);
+    checkOptionsFor(call, args, optionsOf(ext), "." + ext + " export");
     o.colourBy = args.choice("colour_by", kColourBy, o.colourBy);
     if (args.has("tube_radius")) {
         o.tubeRadius = args.finite("tube_radius", std::nullopt);
@@ -128,23 +130,40 @@ std::string extensionOf(const std::filesystem::path& path) {
     return ext;
 }
 
+void checkFormat(const Call& call, const std::string& given, const std::string& ext, bool rails) {
+    const std::vector<std::string> formats = rails ? railExportFormats() : exportFormats();
+    if (std::find(formats.begin(), formats.end(), ext) != formats.end())
+        return;
+    std::string allowed;
+    for (const std::string& f : formats)
+        allowed += (allowed.empty() ? "." : ", .") + f;
+    call.fail(std::string("argument 'path' ") + (rails ? "of a rails export " : "") +
+              "must end in one of " + allowed + " (the format), got \"" + given + "\"");
+}
+
 /// doc:export(path, {colour_by, tube_radius, width, height, view}): format by extension
-/// (ns.export_formats()). Returns the path written.
+/// (ns.export_formats()); doc:export(path, {rails = true}): the rails alone, .csv, .obj or .dxf
+/// (ns.rail_export_formats()). Returns the path written.
 int w_export(Call& call) {
     const Document& doc = checkDocument(call);
     const std::string given = checkString(call, 2, "path");
-    const std::vector<std::string> formats = exportFormats();
     const std::string ext = extensionOf(given);
-    if (std::find(formats.begin(), formats.end(), ext) == formats.end()) {
-        std::string allowed;
-        for (const std::string& f : formats)
-            allowed += (allowed.empty() ? "." : ", .") + f;
-        call.fail("argument 'path' must end in one of " + allowed + " (the format), got \"" +
-                  given + "\"");
-    }
-    const ExportOptions options = exportArgs(call, ext);
+    std::optional<TableArgs> args; // the options table (argument 3), if given
+    if (!lua_isnoneornil(call.L, 3))
+        args.emplace(call, 3, std::initializer_list<const char*>{"colour_by", "tube_radius", "width",
+                                                                 "height", "view", "rails"});
+    const bool rails = args && args->boolean("rails", false);
+    checkFormat(call, given, ext, rails);
+    ExportOptions options;
+    if (args && rails)
+        checkOptionsFor(call, *args, {}, "rails export");
+    else if (args)
+        options = exportArgs(call, *args, ext);
     const auto path = resolveWritePath(context(call.L), given, call.name);
-    exportFile(doc, path, options);
+    if (rails)
+        exportRailsFile(doc.sculpture(), path);
+    else
+        exportFile(doc, path, options);
     lua_pushstring(call.L, path.c_str());
     return 1;
 }
@@ -182,13 +201,22 @@ int w_write_report(Call& call) {
     return 1;
 }
 
-int w_export_formats(Call& call) {
-    const std::vector<std::string> formats = exportFormats();
-    lua_createtable(call.L, int(formats.size()), 0);
-    for (std::size_t i = 0; i < formats.size(); ++i) {
-        lua_pushstring(call.L, formats[i].c_str());
-        lua_rawseti(call.L, -2, lua_Integer(i + 1));
+void pushStrings(lua_State* L, const std::vector<std::string>& strings) {
+    lua_createtable(L, int(strings.size()), 0);
+    for (std::size_t i = 0; i < strings.size(); ++i) {
+        lua_pushstring(L, strings[i].c_str());
+        lua_rawseti(L, -2, lua_Integer(i + 1));
     }
+}
+
+int w_export_formats(Call& call) {
+    pushStrings(call.L, exportFormats());
+    return 1;
+}
+
+/// ns.rail_export_formats() -> {"csv", "obj", "dxf"}: what doc:export(path, {rails = true}) writes.
+int w_rail_export_formats(Call& call) {
+    pushStrings(call.L, railExportFormats());
     return 1;
 }
 
@@ -214,6 +242,7 @@ void addIoMethods(lua_State* L) {
 
 void addModuleIoFunctions(lua_State* L) {
     setFunctions(L, {{"export_formats", entry<w_export_formats>, 0},
+                     {"rail_export_formats", entry<w_rail_export_formats>, 0},
                      {"output_dir", entry<w_output_dir>, 0},
                      {"script_dir", entry<w_script_dir>, 0}});
 }

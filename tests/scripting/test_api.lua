@@ -7,7 +7,7 @@ T.case("module", function()
   T.eq(type(ns.version), "string")
   T.eq(ns.backends()[1], "auto")
   local formats = table.concat(ns.export_formats(), " ")
-  T.check(formats:find("csv") and formats:find("png"), formats)
+  T.check(formats:find("csv") and formats:find("png") and formats:find("dxf"), formats)
 end)
 
 T.case("rails: polyline, B-spline, queries", function()
@@ -253,6 +253,39 @@ T.case("undo and redo several steps at once", function()
   T.eq(#doc:rails(), 1)
 end)
 
+T.case("rails alone: doc:export(path, {rails = true}) reads back with import_rails", function()
+  local doc = ns.new()
+  doc:add_rail{name = "top ring", points = T.circle(2, 5, 12), closed = true}
+  doc:add_rail{name = "edge, east", points = {{0.1, 0, 1}, {1, 0, 1}, {1, 1 / 3, 1.5}}}
+  T.eq(table.concat(ns.rail_export_formats(), " "), "csv obj dxf")
+  for _, ext in ipairs{"csv", "obj", "dxf"} do
+    local path = doc:export("api/rails." .. ext, {rails = true})
+    local rails = ns.new():import_rails(path)
+    T.eq(#rails, 2, ext)
+    for i, rail in ipairs(rails) do
+      local before, after = doc:rails()[i]:info(), rail:info()
+      T.eq(after.name, before.name, ext)
+      T.eq(after.closed, before.closed, ext)
+      T.eq(after.points, before.points, ext)
+      T.eq(after.length, before.length, ext) -- every bit: the same points
+      for _, t in ipairs{0, 0.37, 0.5, 0.999} do
+        local a, b = rail:point(t), doc:rails()[i]:point(t)
+        for axis = 1, 3 do T.eq(a[axis], b[axis], ext) end
+      end
+    end
+  end
+  -- the rails export takes no other option, and only its own formats
+  T.raises(function() doc:export("api/rails.dxf", {rails = true, tube_radius = 0.01}) end,
+           "export: argument 'tube_radius' does not apply to a rails export (it takes no options)")
+  T.raises(function() doc:export("api/rails.png", {rails = true}) end,
+           "export: argument 'path' of a rails export must end in one of .csv, .obj, .dxf",
+           "got \"api/rails.png\"")
+  T.raises(function() doc:export("api/net.dxf", {width = 300}) end,
+           "export: argument 'width' does not apply to a .dxf export (it takes no options)")
+  T.raises(function() doc:export("api/rails.csv", {rails = "yes"}) end,
+           "export: argument 'rails' must be true or false")
+end)
+
 T.case("relax, export, report, save and open", function()
   local doc = ns.new()
   T.eq(doc:last_relax(), nil)
@@ -276,6 +309,11 @@ T.case("relax, export, report, save and open", function()
   local lines = 0
   for _ in io.lines(csv) do lines = lines + 1 end
   T.eq(lines, 1 + 96)
+  -- the net as DXF: a LINE per bar (24 columns x 3 rows below the ring, two bars up each)
+  local dxf, bars = doc:export("api/net.dxf"), 0
+  for line in io.lines(dxf) do if line == "LINE" then bars = bars + 1 end end
+  T.eq(bars, 24 * 3 * 2)
+  T.eq(#ns.new():import_rails(dxf), 1) -- the bars are not read as rails
   local report = doc:report()
   T.eq(#report.pieces, 1); T.eq(report.pieces[1].knots, 96)
   T.near(report.total_weight, report.total_mass * 9.81, 1e-9)
