@@ -3,6 +3,8 @@
 
 #include "CliSupport.h"
 
+#include "io/Import.h"
+
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
@@ -80,6 +82,41 @@ TEST_CASE("Help, version and usage errors", "[cli]") {
     CHECK_THAT(runCli("report d.netj --jsn").output, Contains("did you mean --json?"));
     CHECK_THAT(runCli("relax d.netj --frobnicate").output,
                Contains("unexpected arguments: --frobnicate\n"));
+}
+
+TEST_CASE("export --rails writes the rails alone, unrelaxed, and import_rails reads them back",
+          "[cli]") {
+    const fs::path dir = freshFolder("rails");
+    const fs::path script = writeScript(dir, "small.lua", kSmallSculpture);
+    REQUIRE(runCli("run " + quoted(script) + " --out " + quoted(dir) + " -q").exitCode == 0);
+    const fs::path journal = dir / "small.netj";
+    const Ran rails = runCli("export " + quoted(journal) + " --rails " +
+                             quoted(dir / "out" / "rails.dxf") + " " + quoted(dir / "rails.csv"));
+    CHECK(rails.exitCode == 0);
+    CHECK_THAT(rails.output, !Contains("relaxed")); // a journal's rails need no shape
+    for (const fs::path& file : {dir / "out" / "rails.dxf", dir / "rails.csv"}) {
+        const auto back = netsculpt::importRailsFile(file);
+        REQUIRE(back.size() == 1);
+        CHECK(back[0].name == "ring");
+        CHECK(back[0].curve.closed);
+        CHECK(back[0].curve.points.size() == 48);
+        CHECK(back[0].curve.points[0] == netsculpt::Vec3{2, 0, 5}); // 2 cos 0, 2 sin 0, 5
+    }
+    // The whole net as DXF: its bars are left out when its rails are read back.
+    const Ran net = runCli("export " + quoted(journal) + " --no-relax " + quoted(dir / "net.dxf"));
+    CHECK(net.exitCode == 0);
+    const auto back = netsculpt::importRailsFile(dir / "net.dxf");
+    REQUIRE(back.size() == 1);
+    CHECK(back[0].name == "ring");
+
+    const Ran mixed = runCli("export " + quoted(journal) + " --rails " + quoted(dir / "r.obj") +
+                             " --tube-radius 0.01");
+    CHECK(mixed.exitCode == 2);
+    CHECK_THAT(mixed.output, Contains("--tube-radius excludes --rails"));
+    const Ran png = runCli("export " + quoted(journal) + " --rails " + quoted(dir / "r.png"));
+    CHECK(png.exitCode == 1);
+    CHECK_THAT(png.output, Contains("r.png: rails are exported to .csv, .obj or .dxf, not .png"));
+    CHECK_FALSE(fs::exists(dir / "r.obj"));
 }
 
 TEST_CASE("Numbers out of range are usage errors that say what is allowed", "[cli]") {

@@ -242,7 +242,28 @@ int relaxUnlessRelaxed(Document& doc, const fs::path& document, bool relaxFirst,
 
 } // namespace
 
+namespace {
+
+/// `netsculpt export DOC FILE... --rails`: the rails need no relaxation.
+int exportRails(const ExportArgs& a, Verbosity verbosity) {
+    for (const fs::path& file : a.files)
+        checkRailsExport(file);
+    const Document doc = openDocument(a.document, verbosity);
+    for (const fs::path& file : a.files) {
+        if (file.has_parent_path())
+            createFolder(file.parent_path());
+        exportRailsFile(doc.sculpture(), file);
+        if (verbosity != Verbosity::Quiet)
+            std::cerr << "netsculpt: wrote " << file.string() << "\n";
+    }
+    return 0;
+}
+
+} // namespace
+
 int exportDocument(const ExportArgs& a, Verbosity verbosity) {
+    if (a.rails)
+        return exportRails(a, verbosity);
     ExportOptions options;
     options.colourBy = a.colourBy;
     options.tubeRadius = a.tubeRadius;

@@ -54,6 +54,8 @@ struct ExportArgs {
     std::string view = "all";
     /// Relax a shape that is not an equilibrium first (as report does); false: as it is.
     bool relaxFirst = true;
+    /// Write the rails alone (exportRailsFile: .csv, .obj, .dxf); nothing is relaxed.
+    bool rails = false;
 };
 /// Writes the files: 0, or kExitNotConverged when the relaxation it ran stopped short.
 int exportDocument(const ExportArgs& a, Verbosity verbosity);

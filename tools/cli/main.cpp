@@ -134,30 +134,38 @@ void addExport(CLI::App& app, Options& o) {
         app.add_subcommand("export", "Export a sculpture's shape (format by extension)");
     exporting->add_option("document", o.exporting.document, "A journal (.netj) or snapshot (.nets)")
         ->required();
-    exporting->add_flag("!--no-relax", o.exporting.relaxFirst,
-                        "Export the shape as it is; without it a shape that is not relaxed (a "
-                        "journal's) is relaxed first");
+    CLI::Option* noRelax =
+        exporting->add_flag("!--no-relax", o.exporting.relaxFirst,
+                            "Export the shape as it is; without it a shape that is not relaxed (a "
+                            "journal's) is relaxed first");
     exporting
         ->add_option("files", o.exporting.files,
-                     "Files to write: .csv .obj .ply .glb .json .svg .png")
+                     "Files to write: .csv .obj .ply .glb .json .svg .png .dxf (with --rails: "
+                     ".csv .obj .dxf)")
         ->required();
-    exporting->add_option("--colour-by", o.exporting.colourBy, "Colour bars by")
+    std::vector<CLI::Option*> shapeOptions{noRelax};
+    shapeOptions.push_back(exporting->add_option("--colour-by", o.exporting.colourBy, "Colour bars by")
         ->capture_default_str()
-        ->check(CLI::IsMember({"piece", "tension"}));
-    exporting
+        ->check(CLI::IsMember({"piece", "tension"})));
+    shapeOptions.push_back(exporting
         ->add_option("--tube-radius", o.exporting.tubeRadius,
                      "obj/ply: bars as tubes of this radius, m")
         ->capture_default_str()
-        ->check(numberAbove(true));
-    exporting->add_option("--width", o.exporting.width, "png width, pixels")
+        ->check(numberAbove(true)));
+    shapeOptions.push_back(exporting->add_option("--width", o.exporting.width, "png width, pixels")
         ->capture_default_str()
-        ->check(CLI::Range(16, 16384));
-    exporting->add_option("--height", o.exporting.height, "png height, pixels")
+        ->check(CLI::Range(16, 16384)));
+    shapeOptions.push_back(exporting->add_option("--height", o.exporting.height, "png height, pixels")
         ->capture_default_str()
-        ->check(CLI::Range(16, 16384));
-    exporting->add_option("--view", o.exporting.view, "svg/png view")
+        ->check(CLI::Range(16, 16384)));
+    shapeOptions.push_back(exporting->add_option("--view", o.exporting.view, "svg/png view")
         ->capture_default_str()
-        ->check(CLI::IsMember({"top", "side", "front", "perspective", "all"}));
+        ->check(CLI::IsMember({"top", "side", "front", "perspective", "all"})));
+    CLI::Option* rails = exporting->add_flag(
+        "--rails", o.exporting.rails,
+        "Write the rails alone (.csv, .obj or .dxf; import_rails reads them back); no relaxation");
+    for (CLI::Option* option : shapeOptions)
+        rails->excludes(option);
 }
 
 void addReport(CLI::App& app, Options& o) {
