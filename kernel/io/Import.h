@@ -22,6 +22,9 @@
 // lists the layers to read. Text is decoded to UTF-8 (DxfText.h). Coordinates beyond
 // kMaxCoordinate (ImportDetail.h) are refused in every format.
 //
+// netsculpt's own DXF (DxfExport.h): a rail whose entity carries netsculpt's mark is named by
+// it; a LINE marked as a bar is not read.
+//
 // Names. DXF: "LAYER:HANDLE" of the entity (of the first entity of a LINE/ARC chain, in file
 // order; "LAYER:#N" for the N-th entity when the file has no handles); in a block reference
 // "INSLAYER:INSHANDLE/BLOCK:HANDLE". OBJ: the name of the `o` or `g` the line belongs to (else
