@@ -103,7 +103,6 @@ void checkOptionsFor(const Call& call, const TableArgs& args, const std::vector<
     }
 }
 
-
 ExportOptions exportArgs(const Call& call, const TableArgs& args, const std::string& ext) {
     ExportOptions o;
     checkOptionsFor(call, args, optionsOf(ext), "." + ext + " export");
@@ -150,8 +149,9 @@ int w_export(Call& call) {
     const std::string ext = extensionOf(given);
     std::optional<TableArgs> args; // the options table (argument 3), if given
     if (!lua_isnoneornil(call.L, 3))
-        args.emplace(call, 3, std::initializer_list<const char*>{"colour_by", "tube_radius", "width",
-                                                                 "height", "view", "rails"});
+        args.emplace(call, 3,
+                     std::initializer_list<const char*>{"colour_by", "tube_radius", "width",
+                                                        "height", "view", "rails"});
     const bool rails = args && args->boolean("rails", false);
     checkFormat(call, given, ext, rails);
     ExportOptions options;

@@ -128,8 +128,7 @@ void writeRail(DxfWriter& w, const std::string& layer, const Rail& rail) {
     w.text(8, layer);
 }
 
-void writeBars(DxfWriter& w, const std::string& layer, PieceId piece,
-               const MassSpringSystem& sys) {
+void writeBars(DxfWriter& w, const std::string& layer, PieceId piece, const MassSpringSystem& sys) {
     for (std::size_t b = 0; b < sys.barCount(); ++b) {
         if (sys.barPiece[b] != piece)
             continue;

@@ -62,7 +62,7 @@ class Scanner {
     bool inBlock_ = false;                      // between BLOCK and ENDBLK
     std::string block_;                         // the current block's name
     std::size_t blockEntities_ = 0, modelEntities_ = 0;
-    DxfLayer layer_; // the LAYER table entry being read
+    DxfLayer layer_;             // the LAYER table entry being read
     bool netsculptData_ = false; // the entity's extended data being read is NETSCULPT's
 
     [[noreturn]] void fail(std::size_t line, const std::string& what) const {

@@ -1,5 +1,5 @@
-// Rails from OBJ and CSV files (io/Import.h): round trips through exportRailsFile (DXF too), the file
-// formats' rules (headers, rail column, closed rails, units) and bad files.
+// Rails from OBJ and CSV files (io/Import.h): round trips through exportRailsFile (DXF too), the
+// file formats' rules (headers, rail column, closed rails, units) and bad files.
 
 #include "IoTestSupport.h"
 

@@ -144,23 +144,26 @@ void addExport(CLI::App& app, Options& o) {
                      ".csv .obj .dxf)")
         ->required();
     std::vector<CLI::Option*> shapeOptions{noRelax};
-    shapeOptions.push_back(exporting->add_option("--colour-by", o.exporting.colourBy, "Colour bars by")
-        ->capture_default_str()
-        ->check(CLI::IsMember({"piece", "tension"})));
+    shapeOptions.push_back(
+        exporting->add_option("--colour-by", o.exporting.colourBy, "Colour bars by")
+            ->capture_default_str()
+            ->check(CLI::IsMember({"piece", "tension"})));
     shapeOptions.push_back(exporting
-        ->add_option("--tube-radius", o.exporting.tubeRadius,
-                     "obj/ply: bars as tubes of this radius, m")
-        ->capture_default_str()
-        ->check(numberAbove(true)));
+                               ->add_option("--tube-radius", o.exporting.tubeRadius,
+                                            "obj/ply: bars as tubes of this radius, m")
+                               ->capture_default_str()
+                               ->check(numberAbove(true)));
     shapeOptions.push_back(exporting->add_option("--width", o.exporting.width, "png width, pixels")
-        ->capture_default_str()
-        ->check(CLI::Range(16, 16384)));
-    shapeOptions.push_back(exporting->add_option("--height", o.exporting.height, "png height, pixels")
-        ->capture_default_str()
-        ->check(CLI::Range(16, 16384)));
-    shapeOptions.push_back(exporting->add_option("--view", o.exporting.view, "svg/png view")
-        ->capture_default_str()
-        ->check(CLI::IsMember({"top", "side", "front", "perspective", "all"})));
+                               ->capture_default_str()
+                               ->check(CLI::Range(16, 16384)));
+    shapeOptions.push_back(
+        exporting->add_option("--height", o.exporting.height, "png height, pixels")
+            ->capture_default_str()
+            ->check(CLI::Range(16, 16384)));
+    shapeOptions.push_back(
+        exporting->add_option("--view", o.exporting.view, "svg/png view")
+            ->capture_default_str()
+            ->check(CLI::IsMember({"top", "side", "front", "perspective", "all"})));
     CLI::Option* rails = exporting->add_flag(
         "--rails", o.exporting.rails,
         "Write the rails alone (.csv, .obj or .dxf; import_rails reads them back); no relaxation");
