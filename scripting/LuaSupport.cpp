@@ -191,11 +191,13 @@ void setMethods(lua_State* L, std::initializer_list<Function> methods) {
 
 std::int64_t checkWhole(const Call& call, int index, const char* arg, std::int64_t min,
                         std::int64_t max) {
-    const bool anyMin = min == INT32_MIN || min == INT64_MIN, anyMax = max == INT32_MAX || max == INT64_MAX;
+    const bool anyMin = min == INT32_MIN || min == INT64_MIN,
+               anyMax = max == INT32_MAX || max == INT64_MAX;
     const std::string range = anyMin && anyMax ? ""
                               : anyMax         ? " >= " + std::to_string(min)
-                              : anyMin         ? " <= " + std::to_string(max)
-                                       : " from " + std::to_string(min) + " to " + std::to_string(max);
+                              : anyMin
+                                  ? " <= " + std::to_string(max)
+                                  : " from " + std::to_string(min) + " to " + std::to_string(max);
     const std::string expected = "a whole number" + range;
     if (lua_type(call.L, index) != LUA_TNUMBER)
         call.bad(arg, index, expected);

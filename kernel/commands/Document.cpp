@@ -143,7 +143,8 @@ struct Document::State {
     }
     /// Commits a freshly compiled system for the new current state.
     void installCompiled(CompiledSculpture next, const KnotRenaming& renamed = {}) {
-        if (warm) carryPositions(compiled, next, renamed);
+        if (warm)
+            carryPositions(compiled, next, renamed);
         compiled = std::move(next);
         relaxed = false;
     }
@@ -157,7 +158,8 @@ struct Document::State {
     /// How `command` renamed knots it did not move: a split's right part (else none).
     KnotRenaming renamingOf(const Command& command, const CommandResult& result) const {
         const auto* split = std::get_if<SplitCommand>(&command);
-        if (split == nullptr || result.pieces.size() != 2 || !compiled.pieces.contains(split->piece))
+        if (split == nullptr || result.pieces.size() != 2 ||
+            !compiled.pieces.contains(split->piece))
             return {};
         return splitRenaming(split->piece, result.pieces[1], split->column,
                              compiled.pieces.at(split->piece).columns);
@@ -213,7 +215,8 @@ struct Document::State {
         }
         for (PieceId id : bornPieces) pieceBirth[id.value] = steps[index - 1].serial;
         for (RailId id : bornRails) railBirth[id.value] = steps[index - 1].serial;
-        if (next) installCompiled(std::move(*next), renamingOf(command, result));
+        if (next)
+            installCompiled(std::move(*next), renamingOf(command, result));
         log.push_back(std::move(entry));
         gestureOpen = true;
         return result;

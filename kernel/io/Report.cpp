@@ -66,7 +66,8 @@ json pieceTop(const Sculpture& s, const Piece& p) {
             {"parents", parents},
             {"gear", toString(e.gear)},
             {"gear_value", e.gear.value()},
-            {"offset", e.offset}};
+            {"offset", e.offset},
+            {"ring", e.ringClosed}};
 }
 
 /// (l - l_eq) / l_eq of bar b at the system's positions.

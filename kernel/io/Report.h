@@ -20,8 +20,8 @@
 //   hold.
 //   pieces[]: id, name, rows, columns, closed, knots (rows x columns: its own grid, shared
 //   knots counted in every piece holding them), knots_tied (the knots it owns: a shared knot is
-//   tied once, in the first piece that holds it; they sum to `knots`), bars (the bars the piece owns), rope_length
-//   (sum of their rest lengths), mass (its bars' rope + the knot mass of the knots it owns: a
+//   tied once, in the first piece that holds it; they sum to `knots`), bars (the bars the piece
+//   owns), rope_length (sum of their rest lengths), mass (its bars' rope + the knot mass of the knots it owns: a
 //   shared knot's knot mass counts once, in the first piece that holds it; the pieces' masses
 //   sum to total_mass), bar_axis ("column" or "row"), bar_lengths[] (per column or per row),
 //   bar_lengths_between_rows[] (a piece whose length varies by row: the length of every bar
@@ -29,11 +29,11 @@
 //   tension of its bars, 0 when none is stretched),
 //   material {stiffness, compression_ratio, knot_mass, linear_density}, colour [r, g, b],
 //   top {kind "rail": rail, rail_name, at, step, offset, reverse, start, start_along | kind
-//   "piece": parents[], gear, gear_value, offset} (offset: the column of the rail's or the
+//   "piece": parents[], gear, gear_value, offset, ring} (offset: the column of the rail's or the
 //   parents' row where the piece's column 0 is; start: the rail position of column 0, in [0, 1)
-//   on a closed rail; start_along: the distance along the rail from its start to there, m),
-//   bottom (null or {rail, rail_name, at, step, offset, reverse, start, start_along}), seams[] {side
-//   "left"/"right", piece, shared_bars (the bars along the seam column, made once),
+//   on a closed rail; start_along: the distance along the rail from its start to there, m;
+//   ring: the parents' last rows close round), bottom (null or {rail, rail_name, at, step,
+//   offset, reverse, start, start_along}), seams[] {side "left"/"right", piece, shared_bars (the bars along the seam column, made once),
 //   shared_bars_counted_in (the piece whose bars they are)}.
 //   rails[]: id, name, closed, length, sampling ("arc length" or "parameter": what t means),
 //   attachments (fixed knots held by it), reaction (sum of the reaction forces of its points),

@@ -30,19 +30,38 @@ std::string parentsText(const json& report, const json& parents) {
     std::string text = parents.size() == 1 ? "piece " : "pieces ";
     for (std::size_t i = 0; i < parents.size(); ++i) {
         const json& parent = pieceOf(report, parents[i]);
-        text += (i == 0 ? "" : i + 1 == parents.size() ? " and " : ", ") + integer(parent["id"]) +
-                " (" + parent["name"].get<std::string>() + ")";
+        text += (i == 0                    ? ""
+                 : i + 1 == parents.size() ? " and "
+                                           : ", ") +
+                integer(parent["id"]) + " (" + parent["name"].get<std::string>() + ")";
     }
     return parents.size() == 1 ? text : text + ", taken in that order as one row";
 }
 
-/// "knot (19, X) of piece 1" for one parent, "knot X of that joined row" for several.
-std::string parentKnot(const json& report, const json& parents, const std::string& column) {
+/// How many knots the parents' last rows hold joined in order, a seam knot once; a ring when
+/// the child is closed (its last knot's seam joins the first part again).
+int joinedKnots(const json& report, const json& parents, bool ring) {
+    int knots = 0;
+    for (const json& id : parents)
+        knots += pieceOf(report, id)["columns"].get<int>();
+    return knots - int(parents.size()) + (ring ? 0 : 1);
+}
+
+/// "knot (19, X) of piece 1" for one parent, "knot X of that joined row (40 knots, ...)" for
+/// several.
+std::string parentKnot(const json& report, const json& parents, const std::string& column,
+                       bool ring) {
+    const std::string wrap = ring ? ", round the ring: past the last, counting goes on from 0" : "";
     if (parents.size() != 1)
-        return "knot " + column + " of that joined row";
+        return "knot " + column + " of that joined row (" +
+               std::to_string(joinedKnots(report, parents, ring)) +
+               " knots from the first part's column 0, a seam knot counted once" + wrap + ")";
     const json& parent = pieceOf(report, parents[0]);
+    // Only an offset ("c + 4") can count past the last column.
+    const bool offset = column.find('+') != std::string::npos;
     return "knot (" + std::to_string(parent["rows"].get<int>() - 1) + ", " + column +
-           ") of piece " + integer(parent["id"]);
+           ") of piece " + integer(parent["id"]) +
+           (ring && offset ? " (" + wrap.substr(2) + ")" : "");
 }
 
 /// "c + 4" for a child whose column 0 is column 4 of the joined row, else "c".
@@ -62,25 +81,27 @@ std::string gearText(const json& report, const json& piece) {
     const json& parents = top["parents"];
     const std::string id = integer(piece["id"]), column = columnText(top["offset"].get<int>());
     const double gear = top["gear_value"].get<double>();
+    const bool ring = top["ring"].get<bool>();
     if (gear == 1)
         return "its row 0 is the last row above it: knot (0, c) of piece " + id + " is " +
-               parentKnot(report, parents, column) + ".";
+               parentKnot(report, parents, column, ring) + ".";
     if (gear > 1) {
         const int g = int(gear + 0.5);
-        std::string text = "knot (0, c) of piece " + id + " with " + column + " a multiple of " +
-                           std::to_string(g) + " is " +
-                           parentKnot(report, parents, scaled(column, "", " / " + std::to_string(g))) +
-                           "; " +
-                           (g == 2 ? "the knot between two of them is new, tied"
-                                   : "the two knots between two of them are new, each tied") +
-                           " by one bar to each of the two.";
+        std::string text =
+            "knot (0, c) of piece " + id + " with " + column + " a multiple of " +
+            std::to_string(g) + " is " +
+            parentKnot(report, parents, scaled(column, "", " / " + std::to_string(g)), ring) +
+            "; " +
+            (g == 2 ? "the knot between two of them is new, tied"
+                    : "the two knots between two of them are new, each tied") +
+            " by one bar to each of the two.";
         if (g == 3)
             text += " Both new knots hang from the same two knots, so they take one place.";
         return text;
     }
     const int g = int(1 / gear + 0.5);
     return "knot (0, c) of piece " + id + " is " +
-           parentKnot(report, parents, scaled(column, std::to_string(g) + " x ", "")) +
+           parentKnot(report, parents, scaled(column, std::to_string(g) + " x ", ""), ring) +
            "; the other knots of that row keep only their bars up.";
 }
 
@@ -101,9 +122,8 @@ std::string columnLengths(const json& piece) {
                      "|---|---|---|\n";
     for (std::size_t c = 0; c < n; ++c) {
         const bool hasNext = c + 1 < n || closed;
-        const double next = hasNext ? 0.5 * (lengths[c].get<double>() +
-                                             lengths[(c + 1) % n].get<double>())
-                                    : 0.0;
+        const double next =
+            hasNext ? 0.5 * (lengths[c].get<double>() + lengths[(c + 1) % n].get<double>()) : 0.0;
         md += "| " + std::to_string(c) + " | " + g6(lengths[c].get<double>()) + " | " +
               (hasNext ? g6(next) + (c + 1 == n ? " (to column 0)" : "") : "-") + " |\n";
     }

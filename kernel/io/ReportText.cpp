@@ -47,8 +47,8 @@ std::string vecText(const json& v) {
 }
 
 std::string placeText(const json& v) {
-    return io::concat({"(", metres(v["x"].get<double>()), ", ", metres(v["y"].get<double>()),
-                       ", ", metres(v["z"].get<double>()), ")"});
+    return io::concat({"(", metres(v["x"].get<double>()), ", ", metres(v["y"].get<double>()), ", ",
+                       metres(v["z"].get<double>()), ")"});
 }
 
 std::string cell(const std::string& text) {
@@ -151,11 +151,11 @@ std::string piecesMarkdown(const json& r) {
         md += "| " + num(p["id"]) + " | " + cell(p["name"].get<std::string>()) + " | " +
               num(p["rows"]) + " x " + num(p["columns"]) + " | " +
               (p["closed"].get<bool>() ? "yes" : "no") + " | " + num(p["knots"]) + " | " +
-              num(p["knots_tied"]) + " | " + num(p["bars"]) + " | " + g6(p["rope_length"]) + " | " + g6(p["mass"]) + " | " +
-              barLengthText(p) + " | " + g6(p["max_tension"]) + " | " +
+              num(p["knots_tied"]) + " | " + num(p["bars"]) + " | " + g6(p["rope_length"]) + " | " +
+              g6(p["mass"]) + " | " + barLengthText(p) + " | " + g6(p["max_tension"]) + " | " +
               cell(topText(p["top"])) + " | " +
-              cell(p["bottom"].is_null() ? "free" : railEdgeText(p["bottom"])) +
-              " | " + seamsText(p["seams"]) + " |\n";
+              cell(p["bottom"].is_null() ? "free" : railEdgeText(p["bottom"])) + " | " +
+              seamsText(p["seams"]) + " |\n";
     return md;
 }
 
@@ -263,8 +263,8 @@ std::string reportPiecesCsv(const json& r) {
                "," + num(p["columns"]) + "," + (p["closed"].get<bool>() ? "1" : "0") + "," +
                num(p["knots"]) + "," + num(p["bars"]) + "," + num(p["rope_length"]) + "," +
                num(p["mass"]) + "," + p["bar_axis"].get<std::string>() + "," + io::numberText(lo) +
-               "," + io::numberText(hi) + "," + knottedEnds(p) + "," + num(p["max_tension"]) +
-               "," + csvField(topText(p["top"])) + "," +
+               "," + io::numberText(hi) + "," + knottedEnds(p) + "," + num(p["max_tension"]) + "," +
+               csvField(topText(p["top"])) + "," +
                csvField(p["bottom"].is_null() ? "free" : railEdgeText(p["bottom"])) + "," +
                num(p["knots_tied"]) + "\n";
     }
@@ -278,9 +278,9 @@ std::string reportAttachmentsCsv(const json& r) {
             csv += num(rail["id"]) + "," + num(p["piece"]) + "," + num(p["row"]) + "," +
                    num(p["column"]) + "," + num(p["t"]) + "," + num(p["position"]["x"]) + "," +
                    num(p["position"]["y"]) + "," + num(p["position"]["z"]) + "," +
-                   num(p["reaction"]["x"]) + "," +
-                   num(p["reaction"]["y"]) + "," + num(p["reaction"]["z"]) + "," +
-                   num(p["magnitude"]) + "," + num(p["along"]) + "\n";
+                   num(p["reaction"]["x"]) + "," + num(p["reaction"]["y"]) + "," +
+                   num(p["reaction"]["z"]) + "," + num(p["magnitude"]) + "," + num(p["along"]) +
+                   "\n";
     return csv;
 }
 

@@ -283,7 +283,7 @@ class Builder {
             return "";
         const auto knot = [&](const KnotRef& r, std::uint32_t k) {
             return toString(r.piece) + " row " + std::to_string(r.row) + " (at z = " +
-                   formatNumber(sys.position[k].z) + " m)";
+                   formatNumber(sys.worldPosition(k).z) + " m)";
         };
         return "; it hangs from " + knot(ra, a) + " and " + knot(*rb, b) +
                ": pieces side by side whose last rows end at different heights leave the row "
@@ -385,8 +385,8 @@ class Builder {
         const KnotRef& ref = out_.system.refs[out_.system.refStart[k]];
         throw UserError(toString(ref.piece) + ": the knot at row " + std::to_string(ref.row) +
                         ", column " + std::to_string(ref.column) +
-                        " has no bars and knot_mass 0 kg, so it would weigh nothing; give the "
-                        "piece a knot_mass above 0 (or more rows)");
+                        " would weigh nothing: knot_mass 0 kg and no rope of any weight (no bars, "
+                        "or bars of linear_density 0); give the piece a knot_mass above 0");
     }
 };
 

@@ -154,9 +154,10 @@ PieceId attachToPiece(Sculpture& s, const AttachToPieceArgs& a) {
     ParentEdge edge{{a.parent}, a.gear, parent.closed, 0, true};
     const int columns = gearedColumns(parent.columns, parent.closed, a.gear);
     if (columns < (parent.closed ? 3 : 2))
-        throw UserError("attach_to_piece: gear " + toString(a.gear) + " below " + toString(a.parent) +
-                        "'s " + std::to_string(parent.columns) + " columns gives " +
-                        std::to_string(columns) + (parent.closed ? ", and a closed tube needs 3" : ", and an open sheet needs 2"));
+        throw UserError(
+            "attach_to_piece: gear " + toString(a.gear) + " below " + toString(a.parent) + "'s " +
+            std::to_string(parent.columns) + " columns gives " + std::to_string(columns) +
+            (parent.closed ? ", and a closed tube needs 3" : ", and an open sheet needs 2"));
     Piece p = newPiece(s, a.rows, a.bar);
     p.columns = columns;
     p.closed = parent.closed;

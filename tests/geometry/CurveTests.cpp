@@ -151,10 +151,14 @@ TEST_CASE("distance along a spline rail under either sampling") {
     CHECK(param.distanceAlong(0.25) == Approx(0.625).epsilon(1e-12));
     CHECK(param.distanceAlong(1.0) == Approx(4.0).epsilon(1e-12));
     CHECK(arc.distanceAlong(0.5) == Approx(2.0).epsilon(1e-12));
-    // A closed rail wraps t: -0.25 is 0.75 of the way round a 2 x 2 square.
-    const Curve square = Curve::build(
-        polyline({{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}}, true, Sampling::Parameter));
-    CHECK(square.distanceAlong(-0.25) == Approx(6.0).epsilon(1e-15));
+    // A closed 1 x 3 rectangle (8 m round), each side a quarter of t under parameter sampling:
+    // t = 0.9 is 1 + 3 + 1 + 0.6 x 3 = 6.8 m along it, by arc length 7.2 m; t = -0.1 wraps to it.
+    const std::vector<Vec3> rectangle{{0, 0, 0}, {1, 0, 0}, {1, 3, 0}, {0, 3, 0}};
+    const Curve byParameter = Curve::build(polyline(rectangle, true, Sampling::Parameter));
+    const Curve byLength = Curve::build(polyline(rectangle, true, Sampling::ArcLength));
+    CHECK(byParameter.distanceAlong(0.9) == Approx(6.8).epsilon(1e-14));
+    CHECK(byParameter.distanceAlong(-0.1) == Approx(6.8).epsilon(1e-14));
+    CHECK(byLength.distanceAlong(0.9) == Approx(7.2).epsilon(1e-14));
 }
 
 TEST_CASE("polyline: consecutive duplicate points add no segment", "[curve][polyline]") {

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <set>
 
 using namespace netsculpt;
 using namespace netsculpt::test;
@@ -435,19 +436,23 @@ TEST_CASE("the report measures rail places as a tape along the rail does, to a t
     for (std::size_t i = 0; i < 5; ++i)
         CHECK(points[i]["along"].get<double>() == Approx(along[i]).margin(1e-12));
     CHECK(r["rails"][0]["sampling"] == "parameter");
-    CHECK_THAT(reportMarkdown(r), Contains("| 1 | 0 | 3 | 0.75 | 2.5000 | (2.5000, 0.0000, 5.0000)"));
+    CHECK_THAT(reportMarkdown(r),
+               Contains("| 1 | 0 | 3 | 0.75 | 2.5000 | (2.5000, 0.0000, 5.0000)"));
 
     // Site coordinates: 500 km east, 5,400 km north. Six significant digits would print the
     // ring's knots 0.52 m apart at one place; a tenth of a millimetre tells every one apart.
     Tube site = tubeWithChild(12, 5, 1.0, 0.4, {500000, 5400000, 0});
     const json siteReport = buildReport(site.s, site.compiled);
     const std::string md = reportMarkdown(siteReport);
+    std::set<std::string> places;
     for (const json& p : siteReport["rails"][0]["points"]) {
         char place[96];
         std::snprintf(place, sizeof place, "(%.4f, %.4f, %.4f)", p["position"]["x"].get<double>(),
                       p["position"]["y"].get<double>(), p["position"]["z"].get<double>());
         CHECK_THAT(md, Contains(place));
+        places.insert(place);
     }
+    CHECK(places.size() == 12); // every knot of the ring at a place of its own
 }
 
 TEST_CASE("the report says how a child is knotted into its parent and every graded bar length") {
@@ -465,6 +470,14 @@ TEST_CASE("the report says how a child is knotted into its parent and every grad
     CHECK_THAT(md, Contains("knot (0, c) of piece 2 with c a multiple of 2 is knot (4, c / 2) of "
                             "piece 1; the knot between two of them is new"));
     CHECK_THAT(md, Contains("It adds rows 1 to 2 below (60 knots tied)."));
+    // Below split parts the row is theirs joined: 5 + 9 columns, the cut's seam knot once and
+    // the ring's once, 12 knots, counted round the ring.
+    Tube split = tubeWithChild(12, 5, 1.0, 0.4);
+    edit(split.s, [&](Sculpture& s) { return netsculpt::split(s, split.piece, 4); });
+    split.compiled = compileSculpture(split.s);
+    CHECK_THAT(reportMarkdown(buildReport(split.s, split.compiled)),
+               Contains("is knot c / 2 of that joined row (12 knots from the first part's column "
+                        "0, a seam knot counted once, round the ring"));
     CHECK_THAT(md, !Contains("## Bar lengths")); // one length everywhere: nothing to list
 
     // A sheet split at column 12, its left part graded 0.25 at column 0 to 0.2 at column 12: a

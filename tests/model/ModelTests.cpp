@@ -214,7 +214,10 @@ TEST_CASE("a split or a gear that leaves too few columns says so in the piece's 
                         Contains("is an open piece of 2 columns, which has no column to split at"));
     Tube t = tube(6, 3, 1.0, 0.6);
     REQUIRE_THROWS_WITH(
-        edit(t.s, [&](Sculpture& m) { return attachToPiece(m, {t.piece, {1, 3}, 2, 0.6}); }),
+        edit(t.s,
+             [&](Sculpture& m) {
+                 return attachToPiece(m, {t.piece, {1, 3}, 2, 0.6});
+             }),
         Contains("gear 1/3 below piece 1's 6 columns gives 2, and a closed tube needs 3"));
 }
 
@@ -226,15 +229,23 @@ TEST_CASE("a knot that would weigh nothing is refused, naming it") {
     weightlessKnots.knotMass = 0;
     const Sculpture before = one.s;
     REQUIRE_THROWS_WITH(
-        edit(one.s, [&](Sculpture& m) { setMaterial(m, one.piece, weightlessKnots); return 0; }),
-        Contains("piece 1: the knot at row 0, column 0 has no bars and knot_mass 0 kg"));
+        edit(one.s,
+             [&](Sculpture& m) {
+                 setMaterial(m, one.piece, weightlessKnots);
+                 return 0;
+             }),
+        Contains("piece 1: the knot at row 0, column 0 would weigh nothing: knot_mass 0 kg"));
     CHECK(sameModel(before, one.s));
     Tube two = tube(12, 2, 2.0, 0.8);
-    edit(two.s, [&](Sculpture& m) { setMaterial(m, two.piece, weightlessKnots); return 0; });
+    edit(two.s, [&](Sculpture& m) {
+        setMaterial(m, two.piece, weightlessKnots);
+        return 0;
+    });
     CHECK(two.s.pieces.at(two.piece).material.knotMass == 0);
 }
 
-TEST_CASE("a row too short to span split parts of different heights says which rows it hangs from") {
+TEST_CASE(
+    "a row too short to span split parts of different heights says which rows it hangs from") {
     // A ring of 48 columns, 30 rows of 0.25 m, a gear-2 child of 0.2 m bars, split at 12: the
     // part from column 0 made 40 rows long ends 10 rows lower than the other, and the child's
     // knot between the two last rows cannot reach across (DESIGN.md Eq. 2).
@@ -242,11 +253,14 @@ TEST_CASE("a row too short to span split parts of different heights says which r
     edit(t.s, [&](Sculpture& m) { return attachToPiece(m, {t.piece, {2, 1}, 20, 0.2}); });
     edit(t.s, [&](Sculpture& m) { return split(m, t.piece, 12); });
     const Sculpture before = t.s;
-    REQUIRE_THROWS_WITH(edit(t.s, [&](Sculpture& m) { setRows(m, t.piece, 40); return 0; }),
-                        Contains("is not above half the spacing") &&
-                            Contains("it hangs from piece 1 row 39") &&
-                            Contains("and piece 3 row 29") &&
-                            Contains("last rows end at different heights"));
+    REQUIRE_THROWS_WITH(
+        edit(t.s,
+             [&](Sculpture& m) {
+                 setRows(m, t.piece, 40);
+                 return 0;
+             }),
+        Contains("is not above half the spacing") && Contains("it hangs from piece 1 row 39") &&
+            Contains("and piece 3 row 29") && Contains("last rows end at different heights"));
     CHECK(sameModel(before, t.s));
 }
 

@@ -202,6 +202,12 @@ TEST_CASE("run: exit code 0 with outputs and a journal, 1 with a one-line messag
                              " -q one -- --quick");
     CHECK(mixed.exitCode == 0);
     CHECK_THAT(mixed.output, Contains("one\t--quick\t2"));
+    // -- before the script, as usual, still ends the options; another command's -- is its own.
+    const Ran before = runCli("run --out " + quoted(dir / "out") + " -q -- " +
+                              quoted(dir / "args.lua") + " x");
+    CHECK(before.exitCode == 0);
+    CHECK_THAT(before.output, Contains("x\tnil\t1"));
+    CHECK(runCli("replay --out run d.netj -- extra").exitCode == 2);
     // A dashed argument without -- is a usage error that says where it goes.
     const Ran dashed = runCli("run " + quoted(dir / "args.lua") + " --quick");
     CHECK(dashed.exitCode == 2);

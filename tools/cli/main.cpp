@@ -211,16 +211,36 @@ int dispatch(const CLI::App& app, const Options& o) {
     return reportDocument(args, verbosity);
 }
 
+/// Whether argv[i], an option of `command` (or a global one), takes the next token as its value.
+bool takesValue(const CLI::App& command, const std::string& token) {
+    if (token.find('=') != std::string::npos)
+        return false; // --out=DIR
+    const CLI::Option* option = command.get_option_no_throw(token);
+    if (option == nullptr && command.get_parent() != nullptr)
+        option = command.get_parent()->get_option_no_throw(token);
+    return option != nullptr && option->get_type_size() > 0;
+}
+
 /// Where `run`'s script arguments after `--` start in argv (argc when there are none). CLI11
 /// drops them once the script's list has a value before the `--` (`run s.lua a -- --quick`), so
-/// main parses the rest and appends these.
-int scriptArgumentsAfterDashes(int argc, char** argv) {
-    bool run = false;
-    for (int i = 1; i < argc; ++i) {
-        const std::string_view arg = argv[i];
-        run = run || arg == "run";
-        if (arg == "--")
-            return run ? i : argc;
+/// main parses the rest and appends these. Only when the command is `run` and its script comes
+/// before the `--` (`run --out o -- s.lua x` is CLI11's to read).
+int scriptArgumentsAfterDashes(const CLI::App& app, int argc, char** argv) {
+    const CLI::App* run = app.get_subcommand("run");
+    int i = 1;
+    while (i < argc && std::string_view(argv[i]).starts_with("-") && argv[i] != std::string("--"))
+        ++i; // the global flags (-q, -v) take no value
+    if (i == argc || argv[i] != std::string("run"))
+        return argc;
+    bool script = false;
+    for (++i; i < argc; ++i) {
+        const std::string token = argv[i];
+        if (token == "--")
+            return script ? i : argc;
+        if (!token.starts_with("-"))
+            script = true;
+        else if (takesValue(*run, token))
+            ++i;
     }
     return argc;
 }
@@ -243,7 +263,7 @@ int main(int argc, char** argv) {
     addRelax(app, o);
     addExport(app, o);
     addReport(app, o);
-    const int dashes = scriptArgumentsAfterDashes(argc, argv);
+    const int dashes = scriptArgumentsAfterDashes(app, argc, argv);
     try {
         app.parse(dashes, argv);
         for (int i = dashes + 1; i < argc; ++i)
