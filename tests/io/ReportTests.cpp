@@ -36,6 +36,19 @@ void addSoftRing(Document& doc) {
     doc.execute(SetMaterialCommand{piece, softRope()});
 }
 
+/// Splits `t` at column 12 and grades its left part from 0.25 m at column 0 to 0.2 m at the
+/// seam; compiles it again. Returns the left part.
+PieceId gradeLeftPart(SheetNet& t) {
+    const PieceId left = edit(t.s, [&](Sculpture& s) {
+        const PieceId part = netsculpt::split(s, t.piece, 12).first;
+        setBarLength(s, part, 0, 0.25);
+        setBarLength(s, part, 12, 0.2);
+        return part;
+    });
+    t.compiled = compileSculpture(t.s);
+    return left;
+}
+
 } // namespace
 
 TEST_CASE("report of a single open sheet: counts, rope length and mass by hand") {
@@ -222,13 +235,7 @@ TEST_CASE("the report gives bar lengths as they are knotted, first to last") {
     // A sheet split at column 12, its left part shorter towards the seam: listed from column 0,
     // not smallest first.
     SheetNet split = sheet(5, 25, 4.8, 0.3);
-    const PieceId left = edit(split.s, [&](Sculpture& s) {
-        const PieceId part = netsculpt::split(s, split.piece, 12).first;
-        setBarLength(s, part, 0, 0.25);
-        setBarLength(s, part, 12, 0.2);
-        return part;
-    });
-    split.compiled = compileSculpture(split.s);
+    const PieceId left = gradeLeftPart(split);
     json r = buildReport(split.s, split.compiled);
     REQUIRE(r["pieces"][0]["id"] == left.value);
     CHECK(r["pieces"][0]["bar_lengths_between_rows"].empty());
@@ -484,13 +491,7 @@ TEST_CASE("the report says how a child is knotted into its parent and every grad
     // bar to the next column takes the mean of the two columns' lengths, 0.25 - 0.05 / 24 from
     // column 0.
     SheetNet graded = sheet(5, 25, 4.8, 0.3);
-    const PieceId left = edit(graded.s, [&](Sculpture& s) {
-        const PieceId part = netsculpt::split(s, graded.piece, 12).first;
-        setBarLength(s, part, 0, 0.25);
-        setBarLength(s, part, 12, 0.2);
-        return part;
-    });
-    graded.compiled = compileSculpture(graded.s);
+    const PieceId left = gradeLeftPart(graded);
     const std::string gradedMd = reportMarkdown(buildReport(graded.s, graded.compiled));
     CHECK_THAT(gradedMd, Contains("### Piece " + std::to_string(left.value) + " ("));
     CHECK_THAT(gradedMd, Contains("), graded by column"));
