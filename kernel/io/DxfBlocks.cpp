@@ -5,12 +5,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <set>
 
 namespace netsculpt::io {
 
 namespace {
 
 constexpr int kMaxNesting = 16;
+/// Counts of inserted points stop here (sums of capped counts cannot overflow).
+constexpr std::size_t kCountCap = std::size_t(1) << 60;
 
 /// How the entities of one content are placed.
 struct Placement {
@@ -29,6 +33,29 @@ class Placer {
     Placer(const std::string& file, const DxfDrawing& drawing) : file_(file), drawing_(drawing) {}
 
     PlacedDrawing out;
+
+    /// Refuses the first INSERT of model space past which the drawing's INSERTs place more than
+    /// kMaxInsertedPoints points.
+    void checkBudget() {
+        std::size_t total = 0;
+        for (const DxfInsert& insert : drawing_.model.inserts) {
+            const std::size_t points = insertedPoints(insert);
+            total = std::min(total + points, kCountCap);
+            if (total <= kMaxInsertedPoints)
+                continue;
+            const std::string count = points >= kCountCap ? "more than " + std::to_string(kCountCap)
+                                                          : std::to_string(points);
+            throw UserError(file_ + ": " + insert.entity->describe() + ": places " + count +
+                            " points through block " + quoted(insert.block, 80) +
+                            " (the block references inside it included)" +
+                            (total > points ? ", " + std::to_string(total - points) +
+                                                  " more through the INSERTs before it"
+                                            : std::string()) +
+                            "; netsculpt places at most " + std::to_string(kMaxInsertedPoints) +
+                            " points through block references: insert fewer copies, or put "
+                            "the rails in a drawing of their own");
+        }
+    }
 
     void place(const DxfContent& content, const Placement& at) {
         if (!content.refusals.empty()) {
@@ -60,6 +87,34 @@ class Placer {
   private:
     const std::string& file_;
     const DxfDrawing& drawing_;
+    std::map<const DxfContent*, std::size_t> points_; ///< points of a block, nested ones included
+    std::set<const DxfContent*> counting_;
+
+    /// The points an INSERT places, at most kCountCap. An undefined block, or one
+    /// inside itself, counts nothing here: placing it is refused.
+    std::size_t insertedPoints(const DxfInsert& insert) {
+        const auto found = drawing_.blocks.find(insert.block);
+        if (found == drawing_.blocks.end())
+            return 0;
+        const DxfContent* block = &found->second;
+        if (const auto known = points_.find(block); known != points_.end())
+            return known->second;
+        if (!counting_.insert(block).second)
+            return 0;
+        std::size_t n = block->refusals.size();
+        const auto add = [&](std::size_t more) { n = std::min(n + more, kCountCap); };
+        for (const auto& curve : block->curves)
+            add(curve.second.points.size());
+        for (const auto& part : block->parts)
+            add(part.second.size());
+        for (const DxfSpline& s : block->splines)
+            add(s.control.size());
+        for (const DxfInsert& inner : block->inserts)
+            add(insertedPoints(inner));
+        counting_.erase(block);
+        points_[block] = n;
+        return n;
+    }
 
     static std::string layerIn(const std::string& own, const Placement& at) {
         return own == "0" && !at.layer.empty() ? at.layer : own;
@@ -140,6 +195,7 @@ Affine insertTransform(const DxfInsert& insert, const Vec3& base) {
 
 PlacedDrawing placeDrawing(const std::string& file, const DxfDrawing& drawing) {
     Placer placer(file, drawing);
+    placer.checkBudget();
     placer.place(drawing.model, Placement{});
     return std::move(placer.out);
 }

@@ -26,6 +26,11 @@ struct Affine {
 /// (and ezdxf's Insert.matrix44) define it so.
 Affine insertTransform(const DxfInsert& insert, const Vec3& base);
 
+/// At most this many points (a LINE 2, an ARC its samples, a SPLINE its control points) are
+/// placed through block references, nested ones included: a block inserted ten times in a block
+/// inserted ten times, six deep, makes a 2.5 KB file a million rails.
+inline constexpr std::size_t kMaxInsertedPoints = 1'000'000;
+
 /// Where an entity ends up.
 struct Placed {
     const DxfEntity* entity = nullptr;
@@ -46,7 +51,9 @@ struct PlacedDrawing {
 /// Model space with every INSERT replaced by its block's content, transformed. UserError naming
 /// the INSERT and the block (and asking to explode it in the CAD program) for a block that is
 /// not defined, contains itself, is nested deeper than 16, an array (MINSERT) or inserted with
-/// a scale of 0; and for an entity of an inserted block that cannot be a rail.
+/// a scale of 0; for an entity of an inserted block that cannot be a rail; and naming the INSERT
+/// of model space, its block and the count when the drawing's INSERTs would place more than
+/// kMaxInsertedPoints points (counted before anything is placed).
 PlacedDrawing placeDrawing(const std::string& file, const DxfDrawing& drawing);
 
 } // namespace netsculpt::io

@@ -5,6 +5,7 @@
 #include "IoTestSupport.h"
 
 #include "geometry/Curve.h"
+#include "io/DxfBlocks.h"
 #include "io/Import.h"
 #include "model/Error.h"
 
@@ -143,4 +144,37 @@ TEST_CASE("DXF layers: frozen, off and Defpoints are not read; layers = {...} ch
     metres.layers = {"RAIL"};
     CHECK_THROWS_WITH(importRailsFile(dir / "rails.csv", metres),
                       Contains("rails.csv") && Contains("layers selects the layers of a DXF"));
+}
+
+TEST_CASE("DXF INSERT: copies multiplied through nested blocks are counted before placing") {
+    // B0 holds one LINE (2 points); B1 to B6 each insert the block below ten times, so the
+    // INSERT of B6 would place 10^6 LINEs: 2,000,000 points, twice the budget.
+    std::string blocks =
+        "0\nBLOCK\n8\n0\n2\nB0\n70\n0\n10\n0\n20\n0\n30\n0\n"
+        "0\nLINE\n8\n0\n10\n0\n20\n0\n30\n0\n11\n1\n21\n0\n31\n0\n0\nENDBLK\n8\n0\n";
+    for (int level = 1; level <= 6; ++level) {
+        blocks += "0\nBLOCK\n8\n0\n2\nB" + std::to_string(level) + "\n70\n0\n10\n0\n20\n0\n30\n0\n";
+        for (int copy = 0; copy < 10; ++copy)
+            blocks += "0\nINSERT\n8\n0\n2\nB" + std::to_string(level - 1) + "\n10\n" +
+                      std::to_string(copy) + "\n20\n0\n30\n0\n";
+        blocks += "0\nENDBLK\n8\n0\n";
+    }
+    const auto dir = outputDir("dxf-insert-budget");
+    ImportOptions metres;
+    metres.units = "m";
+    writeText(dir / "copies.dxf", withBlock(blocks, insert("B6")));
+    CHECK(io::kMaxInsertedPoints == 1'000'000);
+    CHECK_THROWS_WITH(importRailsFile(dir / "copies.dxf", metres),
+                      Contains("copies.dxf: INSERT A1 on layer I") &&
+                          Contains("places 2000000 points through block 'B6'") &&
+                          Contains("at most 1000000 points through block references"));
+    // An INSERT of B5 places 2 * 10^5 points: five fill the budget exactly, the sixth passes it.
+    std::string six;
+    for (int copy = 0; copy < 6; ++copy)
+        six += "0\nINSERT\n5\nC" + std::to_string(copy) + "\n8\nI\n2\nB5\n10\n0\n20\n0\n30\n0\n";
+    writeText(dir / "six.dxf", withBlock(blocks, six));
+    CHECK_THROWS_WITH(importRailsFile(dir / "six.dxf", metres),
+                      Contains("INSERT C5 on layer I") &&
+                          Contains("places 200000 points through block 'B5'") &&
+                          Contains("1000000 more through the INSERTs before it"));
 }
