@@ -58,10 +58,8 @@ class Placer {
     }
 
     void place(const DxfContent& content, const Placement& at) {
-        if (!content.refusals.empty()) {
-            const auto& [e, reason] = content.refusals.front();
-            throw UserError(file_ + ": " + e->describe() + at.via + ": " + reason);
-        }
+        for (const auto& [e, reason] : content.refusals)
+            out.refusals.push_back({placed(*e, at), reason});
         for (const auto& [e, spec] : content.curves) {
             CurveSpec moved = spec;
             for (Vec3& p : moved.points)

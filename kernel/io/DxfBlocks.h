@@ -46,14 +46,17 @@ struct PlacedDrawing {
     std::vector<std::pair<Placed, CurveSpec>> curves;
     std::vector<std::pair<Placed, std::vector<Vec3>>> parts;
     std::vector<std::pair<Placed, DxfSpline>> splines;
+    /// Entities that cannot be rails, with the reason (DxfContent::refusals), placed like the
+    /// others: the importer refuses the first one whose layer is read.
+    std::vector<std::pair<Placed, std::string>> refusals;
 };
 
 /// Model space with every INSERT replaced by its block's content, transformed. UserError naming
 /// the INSERT and the block (and asking to explode it in the CAD program) for a block that is
 /// not defined, contains itself, is nested deeper than 16, an array (MINSERT) or inserted with
-/// a scale of 0; for an entity of an inserted block that cannot be a rail; and naming the INSERT
-/// of model space, its block and the count when the drawing's INSERTs would place more than
-/// kMaxInsertedPoints points (counted before anything is placed).
+/// a scale of 0; and naming the INSERT of model space, its block and the count when the
+/// drawing's INSERTs would place more than kMaxInsertedPoints points (counted before anything
+/// is placed). Entities that cannot be rails are placed into `refusals`, not refused here.
 PlacedDrawing placeDrawing(const std::string& file, const DxfDrawing& drawing);
 
 } // namespace netsculpt::io

@@ -77,7 +77,7 @@ CurveSpec polylinePoints(const Polyline& p) {
 
 class Collector final : public DL_CreationAdapter {
   public:
-    Collector(const std::string& file, const DxfScan& scan) : file_(file), scan_(scan) {}
+    explicit Collector(const DxfScan& scan) : scan_(scan) {}
 
     DxfDrawing drawing;
 
@@ -206,7 +206,6 @@ class Collector final : public DL_CreationAdapter {
     }
 
   private:
-    const std::string& file_;
     const DxfScan& scan_;
     std::size_t groups_ = 0, current_ = 0, finished_ = 0;
     std::optional<Polyline> polyline_;
@@ -228,8 +227,8 @@ class Collector final : public DL_CreationAdapter {
     DxfContent& content(const DxfEntity& e) {
         return e.block.empty() ? drawing.model : drawing.blocks[e.block];
     }
-    /// Runs `read` on the current entity. A refusal of an entity in a block is kept for when
-    /// the block is used (a block that is never inserted is not drawn).
+    /// Runs `read` on the current entity. A refusal is kept, not thrown: it counts only for an
+    /// entity that is read (its layer chosen, its block inserted), which is known after placing.
     template <class Read> void guarded(Read&& read) {
         const DxfEntity* e = entity();
         if (!e)
@@ -241,8 +240,6 @@ class Collector final : public DL_CreationAdapter {
         }
     }
     void refuse(const DxfEntity& e, const std::string& reason) {
-        if (e.block.empty())
-            throw UserError(file_ + ": " + e.describe() + ": " + reason);
         content(e).refusals.push_back({&e, reason});
     }
     void checkRadius(const DxfEntity& e, double r) const {
@@ -270,7 +267,7 @@ class Collector final : public DL_CreationAdapter {
 } // namespace
 
 DxfDrawing collectDxf(const std::string& file, const DxfScan& scan, const std::string& text) {
-    Collector collector(file, scan);
+    Collector collector(scan);
     DL_Dxf dxf;
     // dxflib reads the decoded text, not the file. Its stream reader does not report the group
     // codes (processCodeValuePair), which tie each entity to the scan's: it reads a FILE over

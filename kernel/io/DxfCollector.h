@@ -34,7 +34,8 @@ struct DxfContent {
     std::vector<std::pair<const DxfEntity*, std::vector<Vec3>>> parts; ///< LINE, ARC
     std::vector<DxfSpline> splines;
     std::vector<DxfInsert> inserts;
-    /// Entities of a block that cannot be rails, with the reason: refused when it is inserted.
+    /// Entities that cannot be rails, with the reason: refused only when one is read (its layer
+    /// chosen and, in a block, the block inserted).
     std::vector<std::pair<const DxfEntity*, std::string>> refusals;
     Vec3 base;            ///< a block's base point (group 10 of BLOCK)
     bool defined = false; ///< a BLOCK of this name was read
@@ -46,8 +47,8 @@ struct DxfDrawing {
     std::map<std::string, DxfContent> blocks;
 };
 
-/// Reads `text` (checked by `scan`) with dxflib. UserError for an entity of model space that
-/// cannot be a rail (an ELLIPSE, a mesh); in a block that is kept in DxfContent::refusals.
+/// Reads `text` (checked by `scan`) with dxflib. An entity that cannot be a rail (an ELLIPSE, a
+/// mesh) is kept in DxfContent::refusals, not refused here.
 DxfDrawing collectDxf(const std::string& file, const DxfScan& scan, const std::string& text);
 
 } // namespace netsculpt::io

@@ -131,7 +131,8 @@ class LayerChoice {
         }
     }
 
-    bool reads(const Placed& p) {
+    /// Whether `p` is read; `noteSkipped` records a layer left out because it is not drawn.
+    bool reads(const Placed& p, bool noteSkipped = true) {
         if (p.entity->netsculptBar())
             return false; // a bar of a net netsculpt wrote (DxfExport.h), on any layer
         if (!asked_.empty()) {
@@ -144,7 +145,7 @@ class LayerChoice {
         bool hidden = frozen_.count(layer) || off_.count(layer) || layer == "defpoints";
         for (const auto& outer : p.insertLayers)
             hidden = hidden || frozen_.count(folded(outer));
-        if (hidden)
+        if (hidden && noteSkipped)
             skipped_.insert(p.layer);
         return !hidden;
     }
@@ -193,6 +194,15 @@ std::vector<NamedCurve> importDxf(const std::filesystem::path& path, const Impor
     const double metres = fileUnits(file, drawing.insunits, options);
     LayerChoice layers(file, scan, options.layers);
     const PlacedDrawing placed = placeDrawing(file, drawing);
+    // An entity that cannot be a rail is refused only when it would be read: the first in file
+    // order (of its model-space entity or outermost INSERT).
+    const std::pair<Placed, std::string>* refused = nullptr;
+    for (const auto& refusal : placed.refusals)
+        if (layers.reads(refusal.first, false) &&
+            (!refused || refusal.first.order < refused->first.order))
+            refused = &refusal;
+    if (refused)
+        throw UserError(file + ": " + refused->first.where + ": " + refused->second);
 
     std::vector<SourcedCurve> all;
     for (const auto& [p, spec] : placed.curves)

@@ -178,3 +178,38 @@ TEST_CASE("DXF INSERT: copies multiplied through nested blocks are counted befor
                           Contains("places 200000 points through block 'B5'") &&
                           Contains("1000000 more through the INSERTs before it"));
 }
+
+TEST_CASE("DXF: an entity that cannot be a rail is refused only when its layer is read") {
+    const auto dir = outputDir("dxf-unread-refusals");
+    const std::string table = "0\nSECTION\n2\nTABLES\n0\nTABLE\n2\nLAYER\n"
+                              "0\nLAYER\n2\nDECOR\n70\n1\n62\n7\n0\nENDTAB\n0\nENDSEC\n";
+    const std::string ellipse = "0\nELLIPSE\n8\nDECOR\n10\n0\n20\n0\n30\n0\n11\n1\n21\n0\n31\n0\n"
+                                "40\n0.5\n";
+    const std::string line = "0\nLINE\n8\nR\n10\n0\n20\n0\n30\n0\n11\n2\n21\n0\n31\n0\n";
+    const std::string block =
+        "0\nBLOCK\n8\n0\n2\nE\n70\n0\n10\n0\n20\n0\n30\n0\n" + ellipse + "0\nENDBLK\n8\n0\n";
+    ImportOptions metres;
+    metres.units = "m";
+    // Model space: the ELLIPSE is on the frozen layer DECOR, and then on a layer not chosen.
+    writeText(dir / "frozen.dxf",
+              table + "0\nSECTION\n2\nENTITIES\n" + ellipse + line + "0\nENDSEC\n0\nEOF\n");
+    const auto drawn = importRailsFile(dir / "frozen.dxf", metres);
+    REQUIRE(drawn.size() == 1);
+    CHECK(drawn[0].curve.points == std::vector<Vec3>{{0, 0, 0}, {2, 0, 0}});
+    ImportOptions onlyR = metres;
+    onlyR.layers = {"R"};
+    CHECK(importRailsFile(dir / "frozen.dxf", onlyR).size() == 1);
+    ImportOptions decor = metres;
+    decor.layers = {"DECOR", "R"};
+    CHECK_THROWS_WITH(importRailsFile(dir / "frozen.dxf", decor),
+                      Contains("ELLIPSE on layer DECOR") && Contains("convert it"));
+    // In a block: the ELLIPSE keeps its frozen layer DECOR, inserted on layer I.
+    writeText(dir / "block.dxf", table + withBlock(block, insert("E") + line));
+    CHECK(importRailsFile(dir / "block.dxf", onlyR).size() == 1);
+    CHECK(importRailsFile(dir / "block.dxf", metres).size() == 1);
+    ImportOptions byInsert = metres;
+    byInsert.layers = {"I"};
+    CHECK_THROWS_WITH(importRailsFile(dir / "block.dxf", byInsert),
+                      Contains("ELLIPSE on layer DECOR") &&
+                          Contains("inserted by INSERT A1 on layer I"));
+}
