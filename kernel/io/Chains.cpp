@@ -4,7 +4,10 @@
 #include "model/Error.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <unordered_map>
 
 namespace netsculpt::io {
 
@@ -20,27 +23,81 @@ bool shorterThan(const ChainPart& part, double tolerance) {
     });
 }
 
+/// The parts' ends hashed into a grid of cubes `tolerance` wide, so that ends within the
+/// tolerance of one another lie in the same or in neighbouring cells: finding an end's partners
+/// looks at 27 cells, not at every end.
+class EndGrid {
+  public:
+    EndGrid(const std::vector<ChainPart>& parts, double tolerance) : parts_(parts) {
+        lo_ = parts[0].points[0];
+        for (const auto& part : parts)
+            for (const Vec3* p : {&part.points.front(), &part.points.back()})
+                lo_ = {std::min(lo_.x, p->x), std::min(lo_.y, p->y), std::min(lo_.z, p->z)};
+        // Cells are indexed from the lowest end: at most 1e6 cells along each axis, as the
+        // tolerance is 1e-6 of the extent (0 when every end is the same point: one cell).
+        cell_ = tolerance > 0 ? tolerance : 1.0;
+        for (int node = 0; node < int(2 * parts.size()); ++node)
+            cells_[keyOf(cellOf(end(node)))].push_back(node);
+    }
+
+    const Vec3& end(int node) const {
+        const auto& pts = parts_[std::size_t(node / 2)].points;
+        return node % 2 == 0 ? pts.front() : pts.back();
+    }
+
+    /// Calls `visit(other)` for every other end in the cells around `node`'s.
+    template <class Visit> void around(int node, Visit&& visit) const {
+        const auto [cx, cy, cz] = cellOf(end(node));
+        for (long long dx = -1; dx <= 1; ++dx)
+            for (long long dy = -1; dy <= 1; ++dy)
+                for (long long dz = -1; dz <= 1; ++dz) {
+                    const auto found = cells_.find(keyOf({cx + dx, cy + dy, cz + dz}));
+                    if (found == cells_.end())
+                        continue;
+                    for (int other : found->second)
+                        if (other != node)
+                            visit(other);
+                }
+    }
+
+  private:
+    using Cell = std::array<long long, 3>;
+    const std::vector<ChainPart>& parts_;
+    Vec3 lo_;
+    double cell_ = 1;
+    std::unordered_map<std::uint64_t, std::vector<int>> cells_;
+
+    Cell cellOf(const Vec3& p) const {
+        return {(long long)std::floor((p.x - lo_.x) / cell_),
+                (long long)std::floor((p.y - lo_.y) / cell_),
+                (long long)std::floor((p.z - lo_.z) / cell_)};
+    }
+    /// Cell indices lie in [-1, 1e6 + 1]: 21 bits each.
+    static std::uint64_t keyOf(const Cell& c) {
+        return (std::uint64_t(c[0] + 1) << 42) | (std::uint64_t(c[1] + 1) << 21) |
+               std::uint64_t(c[2] + 1);
+    }
+};
+
 /// Ends are nodes 2 * part + (0 = start, 1 = end). Every end's partners: ends of other parts (or
 /// the other end of the same part) within `tolerance`. UserError when three or more ends meet.
 std::vector<std::vector<int>> partnersOf(const std::string& file,
                                          const std::vector<ChainPart>& parts, double tolerance,
                                          std::string_view advice) {
     const int nodes = int(2 * parts.size());
-    const auto end = [&](int node) -> const Vec3& {
-        const auto& pts = parts[std::size_t(node / 2)].points;
-        return node % 2 == 0 ? pts.front() : pts.back();
-    };
     std::vector<std::vector<int>> partners(std::size_t(nodes), std::vector<int>{});
-    for (int a = 0; a < nodes; ++a)
-        for (int b = a + 1; b < nodes; ++b)
-            if (distance(end(a), end(b)) <= tolerance) {
-                partners[std::size_t(a)].push_back(b);
-                partners[std::size_t(b)].push_back(a);
-            }
+    if (parts.empty())
+        return partners;
+    const EndGrid grid(parts, tolerance);
     for (int a = 0; a < nodes; ++a) {
-        const auto& list = partners[std::size_t(a)];
+        auto& list = partners[std::size_t(a)];
+        grid.around(a, [&](int b) {
+            if (distance(grid.end(a), grid.end(b)) <= tolerance)
+                list.push_back(b);
+        });
         if (list.size() < 2)
             continue;
+        std::sort(list.begin(), list.end());
         std::vector<int> meeting{a / 2};
         for (int b : list)
             if (std::find(meeting.begin(), meeting.end(), b / 2) == meeting.end())
@@ -49,8 +106,8 @@ std::vector<std::vector<int>> partnersOf(const std::string& file,
         for (int part : meeting)
             names += (names.empty() ? "" : ", ") + parts[std::size_t(part)].where;
         throw UserError(file + ": " + std::to_string(list.size() + 1) + " ends meet at " +
-                        pointText(end(a)) + " (" + names + "); a rail cannot branch: " +
-                        std::string(advice));
+                        pointText(grid.end(a)) + " (" + names +
+                        "); a rail cannot branch: " + std::string(advice));
     }
     return partners;
 }
