@@ -79,37 +79,76 @@ class EndGrid {
     }
 };
 
-/// Ends are nodes 2 * part + (0 = start, 1 = end). Every end's partners: ends of other parts (or
-/// the other end of the same part) within `tolerance`. UserError when three or more ends meet.
-std::vector<std::vector<int>> partnersOf(const std::string& file,
-                                         const std::vector<ChainPart>& parts, double tolerance,
-                                         std::string_view advice) {
+/// Ends are nodes 2 * part + (0 = start, 1 = end). Ends within `tolerance` of one another meet,
+/// and so do the two ends of a dropped part (one shorter than the tolerance): the ends that meet
+/// it on either side are joined directly, however far apart they are. Returns every end's
+/// partner: the one other end of a kept part it meets (the other end of the same part for a
+/// closed one), -1 for none. UserError when three or more ends of kept parts meet.
+std::vector<int> partnersOf(const std::string& file, const std::vector<ChainPart>& parts,
+                            const std::vector<char>& dropped, double tolerance,
+                            std::string_view advice) {
     const int nodes = int(2 * parts.size());
-    std::vector<std::vector<int>> partners(std::size_t(nodes), std::vector<int>{});
+    std::vector<int> partner(std::size_t(nodes), -1);
     if (parts.empty())
-        return partners;
+        return partner;
+    // Union-find over the ends; kept[root] counts the ends of kept parts that meet there.
+    std::vector<int> root(partner.size()), kept(partner.size());
+    for (int a = 0; a < nodes; ++a) {
+        root[std::size_t(a)] = a;
+        kept[std::size_t(a)] = dropped[std::size_t(a / 2)] ? 0 : 1;
+    }
+    const auto find = [&](int a) {
+        while (root[std::size_t(a)] != a)
+            a = root[std::size_t(a)] = root[std::size_t(root[std::size_t(a)])];
+        return a;
+    };
+    const auto unite = [&](int a, int b) {
+        a = find(a);
+        b = find(b);
+        if (a == b)
+            return;
+        root[std::size_t(b)] = a;
+        kept[std::size_t(a)] += kept[std::size_t(b)];
+    };
+    for (std::size_t part = 0; part < parts.size(); ++part)
+        if (dropped[part])
+            unite(int(2 * part), int(2 * part + 1));
     const EndGrid grid(parts, tolerance);
     for (int a = 0; a < nodes; ++a) {
-        auto& list = partners[std::size_t(a)];
         grid.around(a, [&](int b) {
             if (distance(grid.end(a), grid.end(b)) <= tolerance)
-                list.push_back(b);
+                unite(a, b);
         });
-        if (list.size() < 2)
+        const int at = find(a);
+        if (kept[std::size_t(at)] < 3)
             continue;
-        std::sort(list.begin(), list.end());
-        std::vector<int> meeting{a / 2};
-        for (int b : list)
-            if (std::find(meeting.begin(), meeting.end(), b / 2) == meeting.end())
+        std::vector<int> meeting;
+        if (!dropped[std::size_t(a / 2)])
+            meeting.push_back(a / 2);
+        for (int b = 0; b < nodes; ++b)
+            if (!dropped[std::size_t(b / 2)] && find(b) == at &&
+                std::find(meeting.begin(), meeting.end(), b / 2) == meeting.end())
                 meeting.push_back(b / 2);
         std::string names;
         for (int part : meeting)
             names += (names.empty() ? "" : ", ") + parts[std::size_t(part)].where;
-        throw UserError(file + ": " + std::to_string(list.size() + 1) + " ends meet at " +
+        throw UserError(file + ": " + std::to_string(kept[std::size_t(at)]) + " ends meet at " +
                         pointText(grid.end(a)) + " (" + names +
                         "); a rail cannot branch: " + std::string(advice));
     }
-    return partners;
+    std::vector<int> firstEnd(std::size_t(nodes), -1); // by root: the first kept end there
+    for (int a = 0; a < nodes; ++a) {
+        if (dropped[std::size_t(a / 2)])
+            continue;
+        int& first = firstEnd[std::size_t(find(a))];
+        if (first < 0) {
+            first = a;
+        } else {
+            partner[std::size_t(a)] = first;
+            partner[std::size_t(first)] = a;
+        }
+    }
+    return partner;
 }
 
 } // namespace
@@ -129,16 +168,17 @@ double joinTolerance(const std::vector<ChainPart>& parts) {
 std::vector<SourcedCurve> joinChains(const std::string& file, std::vector<ChainPart> parts,
                                      std::string_view advice) {
     const double tolerance = joinTolerance(parts);
+    const int n = int(parts.size());
+    // Short parts are dropped after their ends are matched, so that a chain runs on across them.
+    std::vector<char> dropped(std::size_t(n), 0);
     if (std::any_of(parts.begin(), parts.end(),
                     [&](const ChainPart& p) { return !shorterThan(p, tolerance); }))
-        std::erase_if(parts, [&](const ChainPart& p) { return shorterThan(p, tolerance); });
-    const int n = int(parts.size());
-    const auto partners = partnersOf(file, parts, tolerance, advice);
-    const auto partner = [&](int node) {
-        return partners[std::size_t(node)].empty() ? -1 : partners[std::size_t(node)][0];
-    };
+        for (int i = 0; i < n; ++i)
+            dropped[std::size_t(i)] = shorterThan(parts[std::size_t(i)], tolerance);
+    const auto partners = partnersOf(file, parts, dropped, tolerance, advice);
+    const auto partner = [&](int node) { return partners[std::size_t(node)]; };
 
-    std::vector<char> used(std::size_t(n), 0);
+    std::vector<char> used = dropped;
     std::vector<SourcedCurve> chains;
     for (int first = 0; first < n; ++first) {
         if (used[std::size_t(first)])

@@ -28,9 +28,10 @@ double joinTolerance(const std::vector<ChainPart>& parts);
 /// closed when its ends meet (the repeated point dropped), named after its first part in the
 /// given order and running in that part's direction. A part whose points all lie within the
 /// tolerance of its first point (a LINE of 5 um among rails of metres: a snapping slip) is left
-/// out and its neighbours joined across it, unless every part is that short. UserError naming
-/// the parts when three or more ends meet: a rail cannot branch; `advice` says how to keep
-/// branches apart ("put the branches on different layers").
+/// out, unless every part is that short: the ends that meet it at either side are joined
+/// directly, even when they lie further apart than the tolerance. UserError naming the parts
+/// when three or more ends meet: a rail cannot branch; `advice` says how to keep branches apart
+/// ("put the branches on different layers").
 std::vector<SourcedCurve> joinChains(const std::string& file, std::vector<ChainPart> parts,
                                      std::string_view advice);
 

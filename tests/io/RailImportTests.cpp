@@ -214,3 +214,14 @@ TEST_CASE("OBJ rails of many edges are chained in near-linear time") {
     CHECK(rails[0].curve.points.front() == Vec3{3, 0, 0});
     CHECK(seconds < 5);
 }
+
+TEST_CASE("OBJ: a piece shorter than the join tolerance is contracted, not a gap") {
+    // Extent 20: tolerance 2e-5. The middle edge is 1.5e-5 long and each gap 1.5e-5; its
+    // neighbours' ends are 4.5e-5 apart, so they must be joined through it: one rail
+    // (0,0,0) (10,0,0) (20,0,0) (the third edge's first point dropped at the join).
+    const auto rails = importText("slip.obj", "v 0 0 0\nv 10 0 0\nv 10.000015 0 0\nv 10.00003 0 0\n"
+                                              "v 10.000045 0 0\nv 20 0 0\nl 1 2\nl 3 4\nl 5 6\n");
+    REQUIRE(rails.size() == 1);
+    CHECK_FALSE(rails[0].curve.closed);
+    CHECK(rails[0].curve.points == std::vector<Vec3>{{0, 0, 0}, {10, 0, 0}, {20, 0, 0}});
+}
