@@ -10,11 +10,13 @@
 #include <dxflib/dl_creationadapter.h>
 #include <dxflib/dl_dxf.h>
 
+#include <clocale>
 #include <cmath>
-#include <new>
 #include <cstdio>
 #include <locale>
 #include <memory>
+#include <mutex>
+#include <new>
 
 namespace netsculpt::io {
 
@@ -264,6 +266,40 @@ class Collector final : public DL_CreationAdapter {
     }
 };
 
+/// dxflib reads numbers with a std::istringstream, which takes the global C++ locale: under
+/// one whose decimal point is "," it misreads "1.5". While it exists, the global locale
+/// is the classic one. When it already is (the usual case) nothing is switched; otherwise both
+/// the C++ global locale and the C locale (which std::locale::global sets too) are put back
+/// afterwards, under a mutex so that two imports do not interleave their switches. The switch
+/// is process-wide: another thread parsing numbers by the global locale meanwhile would see it.
+class ClassicLocale {
+  public:
+    ClassicLocale() : lock_(mutex()) {
+        if (std::locale() == std::locale::classic())
+            return;
+        const char* c = std::setlocale(LC_ALL, nullptr);
+        cLocale_ = c ? c : "C";
+        previous_ = std::locale::global(std::locale::classic());
+    }
+    ~ClassicLocale() {
+        if (!previous_)
+            return;
+        std::locale::global(*previous_);
+        std::setlocale(LC_ALL, cLocale_.c_str());
+    }
+    ClassicLocale(const ClassicLocale&) = delete;
+    ClassicLocale& operator=(const ClassicLocale&) = delete;
+
+  private:
+    static std::mutex& mutex() {
+        static std::mutex m;
+        return m;
+    }
+    std::lock_guard<std::mutex> lock_;
+    std::optional<std::locale> previous_;
+    std::string cLocale_;
+};
+
 } // namespace
 
 DxfDrawing collectDxf(const std::string& file, const DxfScan& scan, const std::string& text) {
@@ -271,23 +307,18 @@ DxfDrawing collectDxf(const std::string& file, const DxfScan& scan, const std::s
     DL_Dxf dxf;
     // dxflib reads the decoded text, not the file. Its stream reader does not report the group
     // codes (processCodeValuePair), which tie each entity to the scan's: it reads a FILE over
-    // the text, as DL_Dxf::in(path) does over the file, with the same "C" locale.
+    // the text, as DL_Dxf::in(path) does over the file, in the classic locale.
     const std::unique_ptr<FILE, int (*)(FILE*)> stream(
         fmemopen(const_cast<char*>(text.data()), text.size(), "r"), &std::fclose);
     if (!stream)
         throw UserError(file + ": cannot read the file");
-    const std::locale previous = std::locale::global(std::locale::classic());
+    const ClassicLocale classic;
     try {
         while (dxf.readDxfGroups(stream.get(), &collector)) {
         }
     } catch (const std::bad_alloc&) {
-        std::locale::global(previous);
         throw UserError(file + ": the drawing declares more data than can be held in memory");
-    } catch (...) {
-        std::locale::global(previous);
-        throw;
     }
-    std::locale::global(previous);
     return std::move(collector.drawing);
 }
 

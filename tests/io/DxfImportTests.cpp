@@ -12,7 +12,9 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <clocale>
 #include <cmath>
+#include <locale>
 #include <numbers>
 
 using namespace netsculpt;
@@ -377,4 +379,24 @@ TEST_CASE("DXF: extrusion directions written with huge or tiny numbers") {
         for (const Vec3& p : rails[0].curve.points)
             CHECK(distance(p, {-1, 2, -3}) == Approx(0.5).epsilon(1e-12));
     }
+}
+
+TEST_CASE("DXF: reading leaves the host's C and C++ locales as they were") {
+    const auto dir = outputDir("dxf-locale");
+    writeText(dir / "line.dxf",
+              minimalDxf("0\nLINE\n8\nR\n10\n0.5\n20\n0\n30\n0\n11\n2.25\n21\n0\n31\n0\n"));
+    ImportOptions metres;
+    metres.units = "m";
+    const std::vector<Vec3> expected{{0.5, 0, 0}, {2.25, 0, 0}};
+    // A host (Lua's os.setlocale) that set only the C locale: the C++ one is still classic.
+    REQUIRE(std::setlocale(LC_ALL, "C.UTF-8") != nullptr);
+    CHECK(importRailsFile(dir / "line.dxf", metres)[0].curve.points == expected);
+    CHECK(std::string(std::setlocale(LC_ALL, nullptr)) == "C.UTF-8");
+    // A host that set the C++ global locale (and with it the C one): switched and put back.
+    std::locale::global(std::locale("C.UTF-8"));
+    CHECK(importRailsFile(dir / "line.dxf", metres)[0].curve.points == expected);
+    CHECK(std::locale().name() == "C.UTF-8");
+    CHECK(std::string(std::setlocale(LC_ALL, nullptr)) == "C.UTF-8");
+    std::locale::global(std::locale::classic());
+    CHECK(std::string(std::setlocale(LC_ALL, nullptr)) == "C");
 }
