@@ -108,7 +108,8 @@ std::string listed(const std::vector<std::string>& items) {
 /// drawing's), else every layer that is drawn: not frozen, not off, not Defpoints.
 class LayerChoice {
   public:
-    LayerChoice(const std::string& file, const DxfScan& scan, const std::vector<std::string>& asked) {
+    LayerChoice(const std::string& file, const DxfScan& scan,
+                const std::vector<std::string>& askedNames) {
         std::set<std::string> names; // the LAYER table's and those entities name
         for (const DxfLayer& layer : scan.layers) {
             names.insert(layer.name);
@@ -122,14 +123,18 @@ class LayerChoice {
         std::set<std::string> known;
         for (const auto& name : names)
             known.insert(folded(name));
-        for (const auto& name : asked) {
+        for (const auto& name : askedNames) {
             if (!known.count(folded(name)))
                 throw UserError(file + ": layers names the layer " + quoted(name, 80) +
                                 ", which the drawing does not have; its layers are " +
                                 listed({names.begin(), names.end()}));
             asked_.insert(folded(name));
         }
+        asked = askedNames;
     }
+
+    /// The layers ImportOptions::layers named, as given; empty when every drawn layer is read.
+    std::vector<std::string> asked;
 
     /// Whether `p` is read; `noteSkipped` records a layer left out because it is not drawn.
     bool reads(const Placed& p, bool noteSkipped = true) {
@@ -139,6 +144,8 @@ class LayerChoice {
             bool listed = asked_.count(folded(p.layer)) > 0;
             for (const auto& layer : p.insertLayers)
                 listed = listed || asked_.count(folded(layer)) > 0;
+            if (!listed && noteSkipped)
+                unchosen_.insert(p.layer);
             return listed;
         }
         const std::string layer = folded(p.layer);
@@ -151,9 +158,11 @@ class LayerChoice {
     }
     /// The layers of entities reads() left out because they are not drawn.
     const std::set<std::string>& skipped() const { return skipped_; }
+    /// The layers of entities reads() left out because `asked` does not name them.
+    const std::set<std::string>& unchosen() const { return unchosen_; }
 
   private:
-    std::set<std::string> frozen_, off_, asked_, skipped_;
+    std::set<std::string> frozen_, off_, asked_, skipped_, unchosen_;
 };
 
 /// Why a drawing gave no rails: what it holds instead.
@@ -171,6 +180,24 @@ class LayerChoice {
     };
     std::string what = file + ": holds no rails (SPLINE, LWPOLYLINE, POLYLINE, LINE, ARC, CIRCLE "
                               "or a block reference of them in model space)";
+    if (!layers.asked.empty()) {
+        std::string held;
+        for (const auto& name : layers.asked) {
+            std::map<std::string, int> on;
+            for (const auto& e : scan.entities)
+                if (e.block.empty() && !e.paperSpace && folded(e.layer) == folded(name))
+                    ++on[e.type];
+            held += (held.empty() ? "" : "; ") + name + ": " +
+                    (on.empty() ? std::string("nothing") : counts(on));
+        }
+        what += " on the layers chosen by layers = {...} (" + held + ")";
+        if (!layers.unchosen().empty())
+            throw UserError(what + "; its rails are on " +
+                            listed({layers.unchosen().begin(), layers.unchosen().end()}) +
+                            "; name those layers in layers = {...} to read them");
+        throw UserError(what + (model.empty() ? std::string("; the drawing has no entities")
+                                              : "; the drawing has " + counts(model)));
+    }
     if (!layers.skipped().empty())
         throw UserError(what + "; its rails are on layers that are not drawn (frozen, off or "
                                "Defpoints): " +

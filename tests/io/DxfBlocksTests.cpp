@@ -213,3 +213,26 @@ TEST_CASE("DXF: an entity that cannot be a rail is refused only when its layer i
                       Contains("ELLIPSE on layer DECOR") &&
                           Contains("inserted by INSERT A1 on layer I"));
 }
+
+TEST_CASE("DXF layers: without rails on the chosen layers, the message says what they hold") {
+    const auto dir = outputDir("dxf-chosen-empty");
+    writeText(dir / "text.dxf",
+              "0\nSECTION\n2\nTABLES\n0\nTABLE\n2\nLAYER\n0\nLAYER\n2\nC\n70\n0\n62\n7\n"
+              "0\nENDTAB\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n"
+              "0\nLINE\n8\nA\n10\n0\n20\n0\n30\n0\n11\n1\n21\n0\n31\n0\n"
+              "0\nTEXT\n8\nB\n10\n0\n20\n0\n30\n0\n40\n1\n1\nlabel\n0\nENDSEC\n0\nEOF\n");
+    ImportOptions chosen;
+    chosen.units = "m";
+    chosen.layers = {"B", "C"};
+    try {
+        importRailsFile(dir / "text.dxf", chosen);
+        FAIL("no error");
+    } catch (const UserError& e) {
+        const std::string message = e.what();
+        INFO(message);
+        CHECK_THAT(message, Contains("on the layers chosen by layers = {...} (B: 1 TEXT; C: "
+                                     "nothing)") &&
+                                Contains("its rails are on A; name those layers") &&
+                                !Contains("it has 1 LINE"));
+    }
+}
