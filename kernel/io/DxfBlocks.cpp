@@ -166,7 +166,12 @@ class Placer {
         inner.namePrefix =
             (at.namePrefix.empty() ? e.railName() : at.namePrefix + e.handleOrIndex()) + "/" +
             insert.block + ":";
-        inner.via = ", inserted by " + e.describe() + at.via;
+        // A scale other than 1 is named: a tiny one can shrink a rail to a point.
+        const std::string scaled = s == Vec3{1, 1, 1}
+                                       ? std::string()
+                                       : " with a scale of x " + numberText(s.x) + ", y " +
+                                             numberText(s.y) + ", z " + numberText(s.z);
+        inner.via = ", inserted by " + e.describe() + scaled + at.via;
         inner.insertLayers = at.insertLayers;
         inner.insertLayers.push_back(inner.layer);
         inner.blocks = at.blocks;

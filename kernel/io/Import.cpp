@@ -46,6 +46,10 @@ void checkCoordinates(const std::string& file, const std::string& where,
         for (const double c : {p.x, p.y, p.z}) {
             if (std::abs(c * metres) <= kMaxCoordinate)
                 continue;
+            if (std::isnan(c))
+                throw UserError(concat({file, ": ", where,
+                                        ": has a coordinate that is not a number (nan); "
+                                        "coordinates must be finite numbers"}));
             const bool inMetres = metres == 1.0;
             throw UserError(concat(
                 {file, ": ", where, ": has a coordinate of ", numberText(c),

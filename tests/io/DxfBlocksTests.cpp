@@ -112,6 +112,11 @@ TEST_CASE("DXF INSERT: what cannot be placed is refused naming the INSERT and th
     REQUIRE(scaled.size() == 1);
     CHECK(scaled[0].name == "I:A1/B:#1");
     CHECK(scaled[0].curve.points == std::vector<Vec3>{{0, 0, 0}, {3, 0, 0}});
+    // A scale of 1e-200 shrinks the 1 m LINE to 1e-200 m, too short to measure: the INSERT and its
+    // scale are named.
+    fails("tiny.dxf", withBlock(kLineBlock, insert("B", "41\n1e-200\n42\n1e-200\n43\n1e-200\n")),
+          {"LINE on layer 0", "inserted by INSERT A1 on layer I",
+           "with a scale of x 1e-200, y 1e-200, z 1e-200", "2 distinct points"});
 }
 
 TEST_CASE("DXF layers: frozen, off and Defpoints are not read; layers = {...} chooses") {

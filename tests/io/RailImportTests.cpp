@@ -6,6 +6,7 @@
 #include "geometry/Curve.h"
 #include "io/Export.h"
 #include "io/Import.h"
+#include "io/ImportDetail.h"
 #include "io/Scene.h"
 #include "model/Error.h"
 
@@ -224,4 +225,15 @@ TEST_CASE("OBJ: a piece shorter than the join tolerance is contracted, not a gap
     REQUIRE(rails.size() == 1);
     CHECK_FALSE(rails[0].curve.closed);
     CHECK(rails[0].curve.points == std::vector<Vec3>{{0, 0, 0}, {10, 0, 0}, {20, 0, 0}});
+}
+
+TEST_CASE("a coordinate that is not a number is called so, not too large") {
+    const std::vector<Vec3> points{{0, 0, 0}, {std::nan(""), 1, 2}};
+    CHECK_THROWS_WITH(io::checkCoordinates("rails.dxf", "LINE 2F on layer R (line 9)", points, 1),
+                      Contains("rails.dxf: LINE 2F on layer R (line 9): has a coordinate that is "
+                               "not a number") &&
+                          !Contains("too large"));
+    // Infinity is beyond any limit: still too large, with the limit.
+    const std::vector<Vec3> far{{0, 0, HUGE_VAL}};
+    CHECK_THROWS_WITH(io::checkCoordinates("rails.dxf", "x", far, 1), Contains("too large"));
 }
