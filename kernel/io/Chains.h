@@ -1,6 +1,6 @@
 #pragma once
-// Rails drawn in pieces (DXF LINEs and ARCs of one layer, OBJ `l` elements of one object) joined
-// end to end into whole rails.
+// Rails drawn in pieces (DXF LINEs and ARCs of one layer within model space or within one block
+// reference, OBJ `l` elements of one object) joined end to end into whole rails.
 
 #include "geometry/Vec3.h"
 #include "io/ImportDetail.h"

@@ -63,11 +63,11 @@ struct DxfScan {
     }
 };
 
-/// Checks `text` (the whole file, decoded to UTF-8 by decodeDxfText) and returns what it recorded. Throws UserError
-/// "<file>: line N: <reason>" for: binary data, a group code that is not an integer, a number
-/// that does not parse or is not finite (in ENTITIES), a line longer than dxflib reads, a
-/// missing ENDSEC/EOF (truncated file), counts that are negative or disagree with the values
-/// present (SPLINE 72/73/41, LWPOLYLINE 90).
+/// Checks `text` (the whole file, decoded to UTF-8 by decodeDxfText) and returns what it
+/// recorded. Throws UserError "<file>: line N: <reason>" for: binary data, a group code that is
+/// not an integer, a number that does not parse or is not finite (in ENTITIES), a line longer
+/// than dxflib reads, a missing ENDSEC/EOF (truncated file), counts that are negative or
+/// disagree with the values present (SPLINE 72/73/41, LWPOLYLINE 90).
 DxfScan scanDxf(const std::string& file, const std::string& text);
 
 } // namespace netsculpt::io

@@ -15,7 +15,9 @@
 // LINEs and ARCs, OBJ and CSV points; exportRailsFile writes closed rails that way.
 //
 // Chains. The LINEs and ARCs of a DXF layer and the `l` elements of an OBJ object are joined end
-// to end (Chains.h); a piece shorter than the join tolerance is left out.
+// to end (Chains.h); a piece shorter than the join tolerance is left out and the ends meeting it
+// joined directly. DXF pieces join only within model space or within one block reference: never
+// a piece of model space with one drawn through an INSERT, nor pieces of two INSERTs.
 //
 // DXF blocks and layers. INSERTs of model space are read through their transform (DxfBlocks.h).
 // Entities on frozen or off layers and on Defpoints are not read, unless ImportOptions::layers
