@@ -154,15 +154,10 @@ std::vector<int> partnersOf(const std::string& file, const std::vector<ChainPart
 } // namespace
 
 double joinTolerance(const std::vector<ChainPart>& parts) {
-    if (parts.empty())
-        return 0;
-    Vec3 lo = parts[0].points[0], hi = lo;
+    std::vector<Vec3> points;
     for (const auto& part : parts)
-        for (const Vec3& p : part.points) {
-            lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-            hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-        }
-    return 1e-6 * distance(lo, hi);
+        points.insert(points.end(), part.points.begin(), part.points.end());
+    return 1e-6 * extent(points);
 }
 
 std::vector<SourcedCurve> joinChains(const std::string& file, std::vector<ChainPart> parts,

@@ -45,12 +45,7 @@ CurveSpec polylinePoints(const Polyline& p) {
     if (!world)
         for (Vec3& v : vertices)
             v.z = p.elevation;
-    Vec3 lo = vertices[0], hi = lo;
-    for (const Vec3& v : vertices) {
-        lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
-        hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
-    }
-    const double tolerance = 1e-6 * distance(lo, hi);
+    const double tolerance = 1e-6 * extent(vertices);
     bool closed = p.flags & 1;
     while (vertices.size() > 2 && distance(vertices.back(), vertices.front()) <= tolerance) {
         vertices.pop_back(); // its bulge (to the first vertex) is that of a zero-length segment

@@ -89,18 +89,10 @@ double fileUnits(const std::string& file, const std::optional<int>& insunits,
     return it->metres;
 }
 
-
 /// ASCII lower case: DXF layer names are compared without case, as CAD programs do.
 std::string folded(std::string text) {
     std::transform(text.begin(), text.end(), text.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });
-    return text;
-}
-
-std::string listed(const std::vector<std::string>& items) {
-    std::string text;
-    for (const auto& item : items)
-        text += (text.empty() ? "" : ", ") + item;
     return text;
 }
 
@@ -199,16 +191,17 @@ class LayerChoice {
                                               : "; the drawing has " + counts(model)));
     }
     if (!layers.skipped().empty())
-        throw UserError(what + "; its rails are on layers that are not drawn (frozen, off or "
-                               "Defpoints): " +
+        throw UserError(what +
+                        "; its rails are on layers that are not drawn (frozen, off or "
+                        "Defpoints): " +
                         listed({layers.skipped().begin(), layers.skipped().end()}) +
                         "; name them in layers = {...} to read them");
     if (model.empty() && !paper.empty())
         throw UserError(what + "; its only entities (" + counts(paper) +
                         ") are in paper space (a layout); move them to model space in the CAD "
                         "program");
-    throw UserError(what + (model.empty() ? std::string("; it has no entities")
-                                          : "; it has " + counts(model)));
+    throw UserError(
+        what + (model.empty() ? std::string("; it has no entities") : "; it has " + counts(model)));
 }
 
 } // namespace
@@ -249,8 +242,8 @@ std::vector<NamedCurve> importDxf(const std::filesystem::path& path, const Impor
             chains[{p.group, p.layer}].push_back({points, p.name, p.where, p.order});
         }
     for (auto& [key, parts] : chains)
-        for (auto& chain : joinChains(file, std::move(parts),
-                                      "put the branches on different layers"))
+        for (auto& chain :
+             joinChains(file, std::move(parts), "put the branches on different layers"))
             all.push_back(std::move(chain));
     if (all.empty())
         refuseEmpty(file, scan, layers);

@@ -46,7 +46,7 @@ struct DxfEntity {
 /// An entry of the LAYER table.
 struct DxfLayer {
     std::string name;
-    int flags = 0;       ///< group 70: 1 = frozen
+    int flags = 0;        ///< group 70: 1 = frozen
     long long colour = 7; ///< group 62: negative = the layer is off
     bool frozen() const { return flags & 1; }
     bool off() const { return colour < 0; }

@@ -1,3 +1,6 @@
+// DXF bytes to UTF-8 text (DxfText.h): the byte-order mark, CR line ends, and the code pages
+// of drawings older than AutoCAD 2007 ($DWGCODEPAGE ANSI_1252, ISO 8859-1).
+
 #include "io/DxfText.h"
 
 #include "io/IoText.h"
@@ -38,9 +41,11 @@ std::size_t firstInvalidUtf8(std::string_view s) {
     std::size_t i = 0;
     while (i < s.size()) {
         const auto b = std::uint8_t(s[i]);
-        const std::size_t length = b < 0x80 ? 1 : (b >> 5) == 0x6 ? 2 : (b >> 4) == 0xE ? 3
-                                              : (b >> 3) == 0x1E ? 4
-                                                                 : 0;
+        const std::size_t length = b < 0x80           ? 1
+                                   : (b >> 5) == 0x6  ? 2
+                                   : (b >> 4) == 0xE  ? 3
+                                   : (b >> 3) == 0x1E ? 4
+                                                      : 0;
         if (length == 0 || i + length > s.size())
             return i;
         char32_t c = length == 1 ? b : b & (0x7F >> length);
@@ -84,7 +89,8 @@ std::vector<std::string_view> splitLines(const std::string& text) {
 }
 
 std::string upper(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::toupper(c)); });
+    std::transform(s.begin(), s.end(), s.begin(),
+                   [](unsigned char c) { return char(std::toupper(c)); });
     return s;
 }
 
@@ -115,7 +121,8 @@ std::string decodeDxfText(const std::string& file, std::string bytes) {
     const std::string version = headerValue(lines, "$ACADVER");
     const std::string page = headerValue(lines, "$DWGCODEPAGE");
     const std::string where = file + ": line " + std::to_string(lineOf(bytes, bad)) +
-                              ": the byte " + io::quoted(bytes.substr(bad, 1)) + " is not UTF-8 text";
+                              ": the byte " + io::quoted(bytes.substr(bad, 1)) +
+                              " is not UTF-8 text";
     if (version >= "AC1021")
         throw UserError(where + ", which a drawing of AutoCAD 2007 or later ($ACADVER " + version +
                         ") must hold; the file is damaged or was written with another encoding");

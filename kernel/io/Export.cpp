@@ -19,13 +19,6 @@ namespace netsculpt {
 
 namespace {
 
-std::string joined(const std::vector<std::string>& items) {
-    std::string text;
-    for (const auto& item : items)
-        text += (text.empty() ? "" : ", ") + item;
-    return text;
-}
-
 void validate(const ExportOptions& o) {
     if (o.colourBy != "piece" && o.colourBy != "tension")
         throw UserError("colour_by must be \"piece\" or \"tension\", got \"" + o.colourBy + "\"");
@@ -38,7 +31,8 @@ void validate(const ExportOptions& o) {
                             std::to_string(value));
     const auto& views = io::viewNames();
     if (o.view != "all" && std::find(views.begin(), views.end(), o.view) == views.end())
-        throw UserError("view must be one of " + joined(views) + " or all; got \"" + o.view + "\"");
+        throw UserError("view must be one of " + io::listed(views) + " or all; got \"" + o.view +
+                        "\"");
 }
 
 /// A CSV field: quoted when it holds a comma, a quote or blanks at its ends.
@@ -153,7 +147,7 @@ void checkExport(const std::filesystem::path& path, const ExportOptions& options
     if (std::find(formats.begin(), formats.end(), ext) == formats.end())
         throw UserError(io::displayName(path) + ": cannot export to " +
                         (ext.empty() ? "a file without extension" : "." + ext) +
-                        "; the formats are " + joined(formats));
+                        "; the formats are " + io::listed(formats));
     validate(options);
 }
 

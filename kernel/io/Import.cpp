@@ -28,14 +28,6 @@ constexpr std::array<Unit, 9> kUnits{{{"m", 1.0},
                                       {"yd", 0.9144},
                                       {"mi", 1609.344}}};
 
-std::string joined(const std::vector<std::string>& items) {
-    std::string text;
-    for (const auto& item : items)
-        text += (text.empty() ? "" : ", ") + item;
-    return text;
-}
-
-/// Splits a line at `separator`, honouring double-quoted fields ("a,b" and "" for a quote).
 } // namespace
 
 namespace io {
@@ -106,7 +98,7 @@ double metresPerUnit(const std::string& unit) {
         if (unit == u.name)
             return u.metres;
     throw UserError("unknown unit " + io::quoted(unit) + "; allowed units are " +
-                    joined(unitNames()));
+                    io::listed(unitNames()));
 }
 
 std::vector<NamedCurve> importRailsFile(const std::filesystem::path& path) {

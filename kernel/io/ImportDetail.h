@@ -3,6 +3,7 @@
 
 #include "io/Import.h"
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,19 @@ struct SourcedCurve {
 /// coordinates (an easting, a northing, even geocentric ones) are far inside, and lengths and
 /// the joining of ends stay exact to well under a micrometre there.
 inline constexpr double kMaxCoordinate = 1e8;
+
+/// The diagonal of the bounding box of `points`, file units (0 for none): 1e-6 of it is the
+/// tolerance within which a polyline's ends (DxfCollector.cpp) and pieces' ends (Chains.h) meet.
+inline double extent(const std::vector<Vec3>& points) {
+    if (points.empty())
+        return 0;
+    Vec3 lo = points[0], hi = lo;
+    for (const Vec3& p : points) {
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    return distance(lo, hi);
+}
 
 /// UserError "<file>: <where>: ..." naming the coordinate and the allowed range unless every
 /// coordinate of `points` (file units, `metres` each) is finite and within kMaxCoordinate.

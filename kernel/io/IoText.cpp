@@ -29,6 +29,13 @@ void appendVec(std::string& out, const Vec3& v, char separator) {
     appendNumber(out, v.z);
 }
 
+std::string listed(const std::vector<std::string>& items) {
+    std::string text;
+    for (const auto& item : items)
+        text += (text.empty() ? "" : ", ") + item;
+    return text;
+}
+
 std::string concat(std::initializer_list<std::string_view> parts) {
     std::size_t size = 0;
     for (auto part : parts)

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace netsculpt::io {
 
@@ -18,6 +19,8 @@ void appendNumber(std::string& out, double value);
 void appendVec(std::string& out, const Vec3& v, char separator);
 /// The parts one after the other. (GCC 12 warns falsely, -Wrestrict, on "x" + std::string&&.)
 std::string concat(std::initializer_list<std::string_view> parts);
+/// The items separated by ", " ("" for none).
+std::string listed(const std::vector<std::string>& items);
 /// Appends the integers separated by `separator` (and nothing before the first).
 void appendIntegers(std::string& out, std::initializer_list<long long> values,
                     char separator = ' ');

@@ -14,6 +14,7 @@ namespace netsculpt::io {
 
 namespace {
 
+/// Splits a line at `separator`, honouring double-quoted fields ("a,b" and "" for a quote).
 std::vector<std::string> splitFields(std::string_view line, char separator) {
     std::vector<std::string> fields(1);
     bool inQuotes = false;
@@ -241,7 +242,8 @@ std::vector<SourcedCurve> readObj(const std::filesystem::path& path, double metr
                                 ": a line element needs at least 2 vertices");
             ChainPart part{{}, object, "line " + std::to_string(lineNo), lineNo};
             for (std::size_t w = 1; w < words.size(); ++w)
-                part.points.push_back(vertices[vertexIndex(file, lineNo, words[w], vertices.size())]);
+                part.points.push_back(
+                    vertices[vertexIndex(file, lineNo, words[w], vertices.size())]);
             checkCoordinates(file, part.where, part.points, metres);
             if (!parts.count(object))
                 objects.push_back(object);
@@ -254,7 +256,7 @@ std::vector<SourcedCurve> readObj(const std::filesystem::path& path, double metr
     std::vector<SourcedCurve> out;
     for (const auto& name : objects) {
         auto chains = joinChains(file, std::move(parts[name]),
-                                     "put the branches in different objects ('o' lines)");
+                                 "put the branches in different objects ('o' lines)");
         std::stable_sort(chains.begin(), chains.end(),
                          [](const auto& a, const auto& b) { return a.order < b.order; });
         for (std::size_t k = 0; k < chains.size(); ++k) {
