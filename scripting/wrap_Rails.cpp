@@ -2,10 +2,14 @@
 
 #include "geometry/Circle.h"
 #include "io/Import.h"
+#include "io/IoText.h"
+#include "model/Error.h"
 #include "scripting/Context.h"
 #include "scripting/Handles.h"
 #include "scripting/Sandbox.h"
 #include "scripting/Wrap.h"
+
+#include <iostream>
 
 namespace netsculpt::lua {
 
@@ -55,6 +59,24 @@ int w_add_rail(Call& call) {
     return 1;
 }
 
+/// A rail longer than this read from a file that states no unit (OBJ, CSV) without `units` is
+/// most likely drawn in millimetres or centimetres: import_rails warns.
+constexpr double kUnlikelyRailLength = 1000; // m
+
+/// Warns on stderr for each such rail, naming it, its length and the option that fixes it.
+void warnUnlikelyLengths(const Document& doc, const std::vector<RailId>& rails,
+                         const std::string& file) {
+    for (RailId id : rails) {
+        const Rail& rail = doc.sculpture().rail(id);
+        const double length = rail.curve().length();
+        if (length > kUnlikelyRailLength)
+            std::cerr << "netsculpt: warning: import_rails: rail '" << rail.name << "' of " << file
+                      << " is " << formatNumber(length)
+                      << " m long, read as metres (the file states no unit); if it is drawn in "
+                         "millimetres, import it with {units = \"mm\"}\n";
+    }
+}
+
 /// doc:import_rails(path [, {units = "mm", layers = {"RAIL", ...}}]) -> {rail, ...}: DXF, OBJ
 /// polylines or CSV.
 int w_import_rails(Call& call) {
@@ -70,6 +92,8 @@ int w_import_rails(Call& call) {
     const auto path = resolveReadPath(context(call.L), given, call.name);
     ImportRailsCommand command{given, importRailsFile(path, options)};
     const CommandResult created = doc.execute(command);
+    if (options.units.empty() && io::lowerExtension(path) != "dxf")
+        warnUnlikelyLengths(doc, created.rails, given);
     lua_createtable(call.L, int(created.rails.size()), 0);
     for (std::size_t i = 0; i < created.rails.size(); ++i) {
         pushRail(call.L, 1, created.rails[i]);

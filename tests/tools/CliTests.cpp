@@ -231,6 +231,27 @@ TEST_CASE("run: exit code 0 with outputs and a journal, 1 with a one-line messag
     CHECK_THAT(unsafe.output, Contains("--unsafe: the sandbox is off"));
 }
 
+TEST_CASE("run: a rail kilometres long from a file without units gets a warning naming units",
+          "[cli]") {
+    // A square of 2000 x 2000 in a CSV: 8 km as metres, likely millimetres. With units = "mm"
+    // it is 8 m and nothing is said.
+    const fs::path dir = freshFolder("units");
+    writeScript(dir, "square.csv",
+                "x,y,z\n0,0,5000\n2000,0,5000\n2000,2000,5000\n0,2000,5000\n0,0,5000\n");
+    const fs::path script = writeScript(
+        dir, "import.lua",
+        "local doc = require('netsculpt').new()\n"
+        "print(doc:import_rails('square.csv')[1]:info().length)\n"
+        "print(doc:import_rails('square.csv', {units = 'mm'})[1]:info().length)\n");
+    const Ran ran = runCli("run " + quoted(script) + " --out " + quoted(dir / "out"));
+    CHECK(ran.exitCode == 0);
+    CHECK_THAT(ran.output, Contains("8000.0\n8.0\n"));
+    CHECK_THAT(ran.output, Contains("rail 'square' of square.csv is 8000 m long, read as metres") &&
+                               Contains("{units = \"mm\"}"));
+    const std::size_t first = ran.output.find("warning");
+    CHECK(ran.output.find("warning", first + 1) == std::string::npos); // the mm import is quiet
+}
+
 TEST_CASE("run: without --out a script reads and writes in out/<script name>, not where the "
           "artist stands", "[cli]") {
     const fs::path home = freshFolder("run-home");
