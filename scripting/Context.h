@@ -10,6 +10,7 @@
 
 #include <lua.hpp>
 
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -19,7 +20,7 @@
 namespace netsculpt::lua {
 
 /// Why a script was stopped by the host.
-enum class Stop { None, Memory, Instructions };
+enum class Stop { None, Memory, Instructions, Interrupted };
 
 struct ScriptContext {
     bool sandboxed = false;          ///< the sandbox rules of Sandbox.h apply
@@ -45,6 +46,9 @@ struct ScriptContext {
     std::uint64_t instructions = 0;    ///< counted in steps of the hook's interval
     std::size_t maxMemory = 0;         ///< bytes; 0 = no limit (only used for messages here)
     Stop stop = Stop::None;            ///< set once a limit is hit; the script cannot continue
+    /// The host's request to stop (the CLI's Ctrl-C): read between instructions and polled by
+    /// every doc:relax, which stops at its next step. Null = none.
+    const std::atomic<bool>* interrupt = nullptr;
 };
 
 /// The state's context, created (default one) on first use when the host did not install one.

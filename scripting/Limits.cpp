@@ -68,25 +68,40 @@ std::string instructionsExceededMessage(std::uint64_t budget) {
     return "script exceeded its budget of " + instructionBudgetText(budget) + " instructions";
 }
 
+const char* interruptedMessage() {
+    return "script interrupted (Ctrl-C)";
+}
+
+bool interruptRequested(const ScriptContext& context) {
+    return context.interrupt != nullptr && context.interrupt->load();
+}
+
 namespace {
 
 constexpr std::uint64_t kHookInterval = 1000;
 
+/// Instructions between two calls of the hook: the budget's interval, or the plain one when
+/// only an interrupt is watched.
 std::uint64_t hookInterval(std::uint64_t budget) {
-    return budget < kHookInterval ? budget : kHookInterval;
+    return budget != 0 && budget < kHookInterval ? budget : kHookInterval;
 }
 
-/// Pushes the message of the limit that stopped the script.
+std::string stopMessage(const ScriptContext& ctx) {
+    switch (ctx.stop) {
+    case Stop::Memory:
+        return memoryExceededMessage(ctx.maxMemory);
+    case Stop::Interrupted:
+        return interruptedMessage();
+    default:
+        return instructionsExceededMessage(ctx.maxInstructions);
+    }
+}
+
 /// Pushes the message of the limit that stopped the script. The push is exempt from the memory
 /// limit (it must not fail when memory is what ran out), and no C++ object is alive during it.
 void pushStopMessage(lua_State* L, const ScriptContext& ctx) {
     char message[128];
-    {
-        const std::string text = ctx.stop == Stop::Memory
-                                     ? memoryExceededMessage(ctx.maxMemory)
-                                     : instructionsExceededMessage(ctx.maxInstructions);
-        std::snprintf(message, sizeof message, "%s", text.c_str());
-    }
+    std::snprintf(message, sizeof message, "%s", stopMessage(ctx).c_str());
     MemoryLimit* limit = memoryLimit(L);
     if (limit != nullptr)
         ++limit->exempt;
@@ -98,8 +113,11 @@ void pushStopMessage(lua_State* L, const ScriptContext& ctx) {
 void countHook(lua_State* L, lua_Debug*) {
     ScriptContext& ctx = context(L);
     ctx.instructions += hookInterval(ctx.maxInstructions);
-    if (ctx.stop == Stop::None && ctx.instructions > ctx.maxInstructions)
+    if (ctx.stop == Stop::None && ctx.maxInstructions != 0 &&
+        ctx.instructions > ctx.maxInstructions)
         ctx.stop = Stop::Instructions;
+    if (ctx.stop == Stop::None && interruptRequested(ctx))
+        ctx.stop = Stop::Interrupted;
     if (ctx.stop == Stop::None)
         return;
     luaL_where(L, 0); // the Lua function being run (a hook has no frame of its own)
@@ -119,9 +137,10 @@ void letLimitsThrough(lua_State* L, int status, int errorIndex) {
     if (ctx.stop == Stop::None)
         return;
     // Re-raise the limit's own message: a message handler may have replaced the error object.
-    const bool isLimitMessage =
-        lua_type(L, errorIndex) == LUA_TSTRING &&
-        std::strstr(lua_tostring(L, errorIndex), "script exceeded") != nullptr;
+    const char* error =
+        lua_type(L, errorIndex) == LUA_TSTRING ? lua_tostring(L, errorIndex) : nullptr;
+    const bool isLimitMessage = error != nullptr && (std::strstr(error, "script exceeded") ||
+                                                     std::strstr(error, interruptedMessage()));
     if (isLimitMessage)
         lua_pushvalue(L, errorIndex);
     else
@@ -202,7 +221,7 @@ int checkedSetmetatable(lua_State* L) {
 } // namespace
 
 void installLimits(lua_State* L, ScriptContext& context) {
-    if (context.maxInstructions != 0)
+    if (context.maxInstructions != 0 || context.interrupt != nullptr)
         lua_sethook(L, countHook, LUA_MASKCOUNT, int(hookInterval(context.maxInstructions)));
     lua_pushcfunction(L, checkedPcall);
     lua_setglobal(L, "pcall");

@@ -10,6 +10,8 @@
 //   "script exceeded its budget of 10^9 instructions" when they pass the budget. Time spent
 //   inside one C function (a backtracking pattern in string.find, a long relaxation) is not
 //   counted: the hook runs between instructions, and nothing here limits wall time.
+// - an interrupt (the CLI's Ctrl-C, ScriptContext::interrupt): the same hook reads it and raises
+//   "script interrupted (Ctrl-C)"; a doc:relax polls it itself.
 // Once a limit is hit the script cannot continue: pcall, xpcall and coroutine.resume re-raise
 // the error instead of returning it, and the hook raises it again at every turn.
 
@@ -47,8 +49,9 @@ class BindingExemption {
     MemoryLimit* limit_;
 };
 
-/// Installs the instruction hook (context.maxInstructions; none when 0) and replaces pcall,
-/// xpcall and coroutine.resume with versions that let a limit's error through.
+/// Installs the instruction hook (context.maxInstructions and context.interrupt; none when
+/// neither) and replaces pcall, xpcall and coroutine.resume with versions that let a limit's
+/// error through.
 void installLimits(lua_State* L, ScriptContext& context);
 
 /// "10^9" for powers of ten from 10^3, else the number: how messages show the budget.
@@ -59,5 +62,9 @@ std::string memoryLimitText(std::size_t bytes);
 /// The messages a stopped script reports.
 std::string memoryExceededMessage(std::size_t limit);
 std::string instructionsExceededMessage(std::uint64_t budget);
+/// "script interrupted (Ctrl-C)": the host asked the script to stop (ScriptContext::interrupt).
+const char* interruptedMessage();
+/// Whether the host asked the script to stop.
+bool interruptRequested(const ScriptContext& context);
 
 } // namespace netsculpt::lua

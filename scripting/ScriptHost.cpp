@@ -76,6 +76,7 @@ ScriptContext makeContext(const fs::path& scriptDir, const std::string& journalS
     ctx.relaxFinished = options.relaxFinished;
     ctx.maxInstructions = options.maxInstructions;
     ctx.maxMemory = options.maxMemory;
+    ctx.interrupt = options.interrupt;
     return ctx;
 }
 
@@ -116,6 +117,11 @@ ScriptResult run(const std::string& chunkName, const fs::path& scriptDir,
         const std::string budget = instructionsExceededMessage(ctx.maxInstructions);
         if (ctx.stop == Stop::Instructions && result.error.find(budget) == std::string::npos)
             result.error = budget;
+    }
+    if (interruptRequested(ctx)) { // also when the script ended before the hook's next turn
+        ctx.stop = Stop::Interrupted;
+        if (status == LUA_OK || result.error.find(interruptedMessage()) == std::string::npos)
+            setError(result, interruptedMessage());
     }
     result.stop = ctx.stop;
     result.journals = ctx.journals;

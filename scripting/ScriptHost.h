@@ -6,6 +6,7 @@
 #include "physics/Relaxer.h"
 #include "scripting/Context.h"
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -39,13 +40,17 @@ struct ScriptOptions {
     std::function<void(const RelaxProgress&)> relaxProgress;
     /// Called when a doc:relax returns. Empty = none.
     std::function<void(const Document&, const RelaxResult&)> relaxFinished;
+    /// When it reads true (the CLI's Ctrl-C) the script stops as at a limit, with "script
+    /// interrupted (Ctrl-C)"; a doc:relax under way stops at its next step first, its shape the
+    /// one reached. Null = none. Must outlive the run.
+    const std::atomic<bool>* interrupt = nullptr;
 };
 
 struct ScriptResult {
     bool ok = true;
     /// The error, one line first ("default.lua:12: attach_to_rail: argument 'rows' ..."); for a
     /// limit: "script exceeded 512 MiB of memory" / "script exceeded its budget of 10^9
-    /// instructions", with the place when known.
+    /// instructions" / "script interrupted (Ctrl-C)", with the place when known.
     std::string error;
     std::string traceback;  ///< the Lua stack at the error, when there was one
     Stop stop = Stop::None; ///< which limit stopped the script

@@ -5,6 +5,7 @@
 #include "physics/Backends.h"
 #include "scripting/Context.h"
 #include "scripting/Handles.h"
+#include "scripting/Limits.h"
 #include "scripting/Wrap.h"
 
 namespace netsculpt::lua {
@@ -48,6 +49,7 @@ DocumentRelaxOptions relaxArgs(const Call& call) {
     if (!ctx.backendOverride.empty())
         options.backend = ctx.backendOverride;
     o.progress = ctx.relaxProgress;
+    o.cancel = ctx.interrupt;
     return options;
 }
 
@@ -82,8 +84,13 @@ int w_relax(Call& call) {
     Document& doc = checkDocument(call);
     const DocumentRelaxOptions options = relaxArgs(call);
     const RelaxResult result = doc.relax(options);
-    if (const auto& finished = context(call.L).relaxFinished)
-        finished(doc, result);
+    ScriptContext& ctx = context(call.L);
+    if (ctx.relaxFinished)
+        ctx.relaxFinished(doc, result);
+    if (interruptRequested(ctx)) { // the script goes no further; the shape reached is kept
+        ctx.stop = Stop::Interrupted;
+        throw UserError(interruptedMessage());
+    }
     pushRelaxResult(call.L, doc, result, 1);
     return 1;
 }

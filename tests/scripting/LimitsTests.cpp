@@ -7,6 +7,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <atomic>
+
 using namespace netsculpt;
 using namespace netsculpt::test;
 using Catch::Matchers::Contains;
@@ -154,4 +156,52 @@ TEST_CASE("A huge table is stopped by the memory limit", "[limits]") {
         CHECK(r.error == "");
         CHECK(r.ok);
     }
+}
+
+TEST_CASE("An interrupt stops the script, also with no instruction budget", "[limits]") {
+    const ScriptFolders f("interrupt");
+    std::atomic<bool> interrupt{true}; // Ctrl-C was pressed
+    auto o = limited(f, 0, 64);        // no budget: the hook runs for the interrupt alone
+    o.interrupt = &interrupt;
+    SECTION("an endless loop, inside pcall too, stops at the hook's first turn") {
+        const auto r = f.run("local n = 0\nwhile true do pcall(function()\n"
+                             "  while true do n = n + 1 end end) end",
+                             o, "loop.lua");
+        CHECK(r.stop == lua::Stop::Interrupted);
+        CHECK_THAT(r.error, Equals("loop.lua:3: script interrupted (Ctrl-C)"));
+        CHECK(r.instructions == 1000);
+    }
+    SECTION("a script that ends before the hook's first turn is not taken as done") {
+        const auto r = f.run("local x = 1", o);
+        CHECK_FALSE(r.ok);
+        CHECK(r.stop == lua::Stop::Interrupted);
+        CHECK_THAT(r.error, Equals("script interrupted (Ctrl-C)"));
+    }
+    SECTION("without the interrupt the same script runs") {
+        interrupt = false;
+        CHECK(f.run("local x = 1", o).ok);
+    }
+}
+
+TEST_CASE("An interrupt during doc:relax stops the relaxation, then the script", "[limits]") {
+    const ScriptFolders f("interrupt-relax");
+    std::atomic<bool> interrupt{false};
+    auto o = limited(f, 0, 64);
+    o.interrupt = &interrupt;
+    long long progressCalls = 0;
+    o.relaxProgress = [&](const RelaxProgress&) { interrupt = ++progressCalls >= 2; };
+    RelaxResult relaxed;
+    o.relaxFinished = [&](const Document&, const RelaxResult& r) { relaxed = r; };
+    const auto r = f.run(R"(local ns = require "netsculpt"
+local doc = ns.new()
+local ring = doc:add_rail{points = ns.circle{radius = 2, points = 48}, closed = true}
+local p = doc:attach_to_rail{rail = ring, columns = 24, rows = 20, bar = 0.4}
+local ok, e = pcall(doc.relax, doc, {backend = "rk4", max_seconds = 60})
+print("went on"))",
+                         o, "relaxing.lua");
+    CHECK(r.stop == lua::Stop::Interrupted);
+    CHECK_THAT(r.error, Equals("relax: script interrupted (Ctrl-C)"));
+    CHECK(relaxed.stopReason == "cancelled");
+    CHECK_FALSE(relaxed.converged);
+    CHECK(relaxed.steps >= 1);
 }

@@ -1,4 +1,5 @@
 #include "Commands.h"
+#include "Interrupt.h"
 #include "Watchdog.h"
 
 #include "io/Export.h"
@@ -130,7 +131,9 @@ int runScript(const RunArgs& a, Verbosity verbosity) {
             "read and write any file\n",
             a.script.string().c_str());
     ProgressLine progress(verbosity);
-    const lua::ScriptOptions options = scriptOptions(a, out, progress);
+    lua::ScriptOptions options = scriptOptions(a, out, progress);
+    const InterruptRequest interrupt;
+    options.interrupt = interrupt.flag();
     const auto start = std::chrono::steady_clock::now();
     const Watchdog watchdog(a.maxSeconds, a.script.string() + " ran past its time limit of " +
                                               formatNumber(a.maxSeconds) + " s (--max-seconds)");
@@ -141,7 +144,11 @@ int runScript(const RunArgs& a, Verbosity verbosity) {
         std::cerr << "netsculpt: error: " << result.error << "\n";
         if (verbosity == Verbosity::Verbose && !result.traceback.empty())
             std::cerr << result.traceback << "\n";
-        return 1;
+        if (result.stop == lua::Stop::Interrupted)
+            for (const fs::path& journal : result.journals)
+                std::cerr << "netsculpt: journal " << journal.string()
+                          << " (the commands run before Ctrl-C)\n";
+        return result.stop == lua::Stop::Interrupted ? kExitInterrupted : 1;
     }
     if (verbosity != Verbosity::Quiet) {
         std::fprintf(stderr, "netsculpt: ran %s in %.1f s; outputs in %s\n",
@@ -200,12 +207,16 @@ int relaxDocument(const RelaxArgs& a, Verbosity verbosity) {
     ProgressLine progress(verbosity);
     if (progress.enabled())
         options.solver.progress = [&progress](const RelaxProgress& p) { progress.update(p); };
+    const InterruptRequest interrupt; // Ctrl-C stops the relaxation; its shape is saved
+    options.solver.cancel = interrupt.flag();
     const RelaxResult result = doc.relax(options);
     progress.clear(); // the result is this command's output, below: not also a message
     doc.saveSnapshot(snapshot);
     std::cout << a.document.string() << ": " << describeRelaxResult(result) << "\n";
     if (verbosity != Verbosity::Quiet)
         std::cerr << "netsculpt: wrote " << snapshot.string() << "\n";
+    if (interrupt.requested())
+        return kExitInterrupted;
     if (!result.converged)
         return kExitNotConverged;
     if (const std::size_t overstretched = countOverstretchedBars(doc.compiled().system))
@@ -231,8 +242,13 @@ int relaxUnlessRelaxed(Document& doc, const fs::path& document, bool relaxFirst,
     ProgressLine progress(verbosity);
     if (progress.enabled())
         options.solver.progress = [&progress](const RelaxProgress& p) { progress.update(p); };
+    const InterruptRequest interrupt;
+    options.solver.cancel = interrupt.flag();
     const RelaxResult result = doc.relax(options);
     progress.clear(); // said once, below
+    if (interrupt.requested())
+        throw Interrupted("the relaxation for " + purpose + " stopped after " +
+                          std::to_string(result.steps) + " steps; nothing was written");
     if (verbosity != Verbosity::Quiet || !result.converged)
         std::cerr << "netsculpt: " << document.string()
                   << " holds no relaxed shape; relaxed it for " << purpose << ": "

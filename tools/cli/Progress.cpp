@@ -54,10 +54,12 @@ void ProgressLine::finish(const RelaxResult& result) {
 std::string describeRelaxResult(const RelaxResult& r) {
     char text[200];
     const char* how = r.converged ? "converged" : "stopped";
+    // The CLI's relaxations are cancelled by Ctrl-C only (Interrupt.h).
+    const std::string why = r.stopReason == "cancelled" ? "Ctrl-C" : r.stopReason;
     std::snprintf(text, sizeof text, "%s%s%s%s after %lld steps, %s, residual %.3g (%s)", how,
-                  r.converged ? "" : " (", r.converged ? "" : r.stopReason.c_str(),
-                  r.converged ? "" : ")", static_cast<long long>(r.steps),
-                  seconds(r.seconds).c_str(), r.residual, r.backend.c_str());
+                  r.converged ? "" : " (", r.converged ? "" : why.c_str(), r.converged ? "" : ")",
+                  static_cast<long long>(r.steps), seconds(r.seconds).c_str(), r.residual,
+                  r.backend.c_str());
     std::string described = text;
     if (r.unsettledAt)
         described += ", largest at " + toString(r.unsettledAt->piece) + " row " +

@@ -1,7 +1,8 @@
 // netsculpt: the command-line tool (tools/cli/README.md). Exit codes: 0 success, 1 user error
-// ("netsculpt: error: ..."), 2 usage error.
+// ("netsculpt: error: ..."), 2 usage error, 3 a relaxation stopped short, 130 Ctrl-C.
 
 #include "Commands.h"
+#include "Interrupt.h"
 #include "ParseErrors.h"
 #include "commands/HeapSettings.h"
 
@@ -281,6 +282,9 @@ int main(int argc, char** argv) {
     }
     try {
         return dispatch(app, o);
+    } catch (const netsculpt::cli::Interrupted& e) {
+        std::cerr << "netsculpt: interrupted: " << e.what() << "\n";
+        return netsculpt::cli::kExitInterrupted;
     } catch (const UserError& e) {
         std::cerr << "netsculpt: error: " << e.what() << "\n";
     } catch (const std::bad_alloc&) {
