@@ -45,6 +45,18 @@ void setScriptArguments(lua_State* L, const std::string& script,
     lua_setglobal(L, "arg");
 }
 
+/// Calls the loaded chunk with the arguments as its `...`, as the stock `lua` interpreter does
+/// (`local rows = ...`); they are the global `arg` too.
+int callScript(lua_State* L, const std::vector<std::string>& args) {
+    if (args.size() > 100'000 || !lua_checkstack(L, int(args.size()) + 1)) {
+        lua_pushfstring(L, "too many script arguments: %d (at most 100000)", int(args.size()));
+        return LUA_ERRRUN;
+    }
+    for (const std::string& a : args)
+        lua_pushlstring(L, a.data(), a.size());
+    return lua_pcall(L, int(args.size()), 0, 1);
+}
+
 /// Opens the libraries and netsculpt, the sandbox and the limits (with no memory limit yet).
 void prepareState(lua_State* L, ScriptContext& ctx, const std::string& script,
                   const ScriptOptions& options) {
@@ -106,7 +118,7 @@ ScriptResult run(const std::string& chunkName, const fs::path& scriptDir,
     lua_pushcfunction(L, messageHandler);
     int status = load(L);
     if (status == LUA_OK)
-        status = lua_pcall(L, 0, 0, 1);
+        status = callScript(L, options.args);
     if (status != LUA_OK) {
         if (status == LUA_ERRMEM && ctx.maxMemory != 0)
             ctx.stop = Stop::Memory;

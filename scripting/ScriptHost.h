@@ -34,7 +34,8 @@ struct ScriptOptions {
     /// file name without extension). Empty for runString = no journal.
     bool journal = true;
     std::string journalStem;
-    /// The script's command-line arguments: the global `arg` (arg[0] = the script, arg[1..]).
+    /// The script's command-line arguments: the global `arg` (arg[0] = the script, arg[1..])
+    /// and the main chunk's `...`, as the stock `lua` interpreter gives them.
     std::vector<std::string> args;
     /// Called during every doc:relax. Empty = none.
     std::function<void(const RelaxProgress&)> relaxProgress;
