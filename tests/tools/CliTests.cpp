@@ -9,7 +9,10 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <fcntl.h>
 #include <fstream>
+#include <sys/file.h>
+#include <unistd.h>
 
 using namespace netsculpt::test;
 using Catch::Matchers::Contains;
@@ -273,6 +276,34 @@ doc:export("secret.txt.csv")
     CHECK(fs::is_regular_file(home / "out" / "peek" / "secret.txt.csv"));
     CHECK(fs::is_regular_file(home / "out" / "peek" / "peek.netj"));
     CHECK_FALSE(fs::exists(home / "secret.txt.csv"));
+}
+
+TEST_CASE("run: a run into an output folder another run holds is refused and writes nothing",
+          "[cli]") {
+    // Two runs of one script into one folder used to append to one session journal: entries of
+    // both interleaved, and the journal then failed to open ("sequence number 1, expected 2").
+    const fs::path dir = freshFolder("run-lock");
+    const fs::path script = writeScript(dir, "small.lua", kSmallSculpture);
+    const fs::path out = dir / "shared out";
+    fs::create_directories(out);
+    std::ofstream(out / "small.netj") << "netsculpt-journal 1\n";
+    const int held = ::open((out / ".netsculpt-run.lock").c_str(), O_RDWR | O_CREAT, 0644);
+    REQUIRE(held >= 0);
+    REQUIRE(::flock(held, LOCK_EX | LOCK_NB) == 0); // as the other run holds it
+
+    const Ran refused = runCli("run " + quoted(script) + " --out " + quoted(out));
+    CHECK(refused.exitCode == 1);
+    CHECK_THAT(refused.output, StartsWith("netsculpt: error: the output folder " + out.string() +
+                                          " is in use by another netsculpt run") &&
+                                   Contains("give this run another --out"));
+    CHECK(printedHash(refused.output).empty()); // the script did not run
+    CHECK(readFile(out / "small.netj") == "netsculpt-journal 1\n");
+
+    ::close(held); // the other run ends: the folder is free again
+    const Ran ran = runCli("run " + quoted(script) + " --out " + quoted(out) + " -q");
+    CHECK(ran.exitCode == 0);
+    CHECK(printedHash(ran.output).size() == 16);
+    CHECK(readFile(out / "small.netj").size() > 100);
 }
 
 TEST_CASE("replay, to-lua, relax, export and report on a journal", "[cli]") {

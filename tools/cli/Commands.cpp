@@ -1,5 +1,6 @@
 #include "Commands.h"
 #include "Interrupt.h"
+#include "OutputLock.h"
 #include "Watchdog.h"
 
 #include "io/Export.h"
@@ -124,6 +125,7 @@ int runScript(const RunArgs& a, Verbosity verbosity) {
     // folder, which must not be wherever the artist happens to stand (their home, say).
     const fs::path out = a.out.empty() ? fs::path("out") / a.script.stem() : a.out;
     createFolder(out);
+    const OutputLock lock(out);
     if (a.unsafe)
         std::fprintf(
             stderr,
