@@ -306,6 +306,44 @@ TEST_CASE("run: a run into an output folder another run holds is refused and wri
     CHECK(readFile(out / "small.netj").size() > 100);
 }
 
+TEST_CASE("run: files an earlier run left in the output folder are named, not taken as this "
+          "run's",
+          "[cli]") {
+    // A script that stops half way leaves its new journal beside the exports of the run before.
+    const fs::path dir = freshFolder("run-leftovers");
+    const fs::path out = dir / "out";
+    const fs::path script = writeScript(dir, "half.lua", R"(
+local ns = require "netsculpt"
+local doc = ns.new()
+local ring = doc:add_rail{points = ns.circle{radius = 2, points = 24}, closed = true}
+doc:attach_to_rail{rail = ring, columns = 12, rows = 3, bar = 0.8}
+doc:export("new.csv")
+if arg[1] == "stop" then error("stopped half way") end
+)");
+    REQUIRE(runCli("run " + quoted(script) + " --out " + quoted(out)).exitCode == 0);
+    fs::create_directories(out / "views");
+    std::ofstream(out / "report.md") << "# an earlier report\n";
+    std::ofstream(out / "views" / "top.png") << "png";
+
+    const Ran stopped = runCli("run " + quoted(script) + " --out " + quoted(out) + " stop");
+    CHECK(stopped.exitCode == 1);
+    CHECK_THAT(stopped.output, Contains("half.lua:7: stopped half way") &&
+                                   Contains("netsculpt: note: 2 files in " + out.string() +
+                                            " are from before this run, which did not write "
+                                            "them: report.md, views/top.png"));
+    CHECK(stopped.output.find("new.csv") == std::string::npos); // rewritten by this run
+    CHECK(stopped.output.find("half.netj") == std::string::npos);
+
+    const Ran whole = runCli("run " + quoted(script) + " --out " + quoted(out));
+    CHECK(whole.exitCode == 0);
+    CHECK_THAT(whole.output, Contains("2 files in " + out.string() + " are from before"));
+    fs::remove(out / "report.md");
+    fs::remove(out / "views" / "top.png");
+    const Ran clean = runCli("run " + quoted(script) + " --out " + quoted(out));
+    CHECK(clean.exitCode == 0);
+    CHECK(clean.output.find("note:") == std::string::npos);
+}
+
 TEST_CASE("replay, to-lua, relax, export and report on a journal", "[cli]") {
     const fs::path dir = freshFolder("journal");
     const fs::path script = writeScript(dir, "small.lua", kSmallSculpture);

@@ -1,4 +1,5 @@
 #include "Commands.h"
+#include "FolderFiles.h"
 #include "Interrupt.h"
 #include "OutputLock.h"
 #include "Watchdog.h"
@@ -126,6 +127,7 @@ int runScript(const RunArgs& a, Verbosity verbosity) {
     const fs::path out = a.out.empty() ? fs::path("out") / a.script.stem() : a.out;
     createFolder(out);
     const OutputLock lock(out);
+    const FolderFiles before(out);
     if (a.unsafe)
         std::fprintf(
             stderr,
@@ -142,6 +144,7 @@ int runScript(const RunArgs& a, Verbosity verbosity) {
     const lua::ScriptResult result = lua::runScriptFile(a.script, options);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const std::string leftovers = leftoverNote(out, before.unchanged());
     if (!result.ok) {
         std::cerr << "netsculpt: error: " << result.error << "\n";
         if (verbosity == Verbosity::Verbose && !result.traceback.empty())
@@ -150,8 +153,12 @@ int runScript(const RunArgs& a, Verbosity verbosity) {
             for (const fs::path& journal : result.journals)
                 std::cerr << "netsculpt: journal " << journal.string()
                           << " (the commands run before Ctrl-C)\n";
+        if (verbosity != Verbosity::Quiet && !leftovers.empty())
+            std::cerr << "netsculpt: note: " << leftovers << "\n";
         return result.stop == lua::Stop::Interrupted ? kExitInterrupted : 1;
     }
+    if (verbosity != Verbosity::Quiet && !leftovers.empty())
+        std::cerr << "netsculpt: note: " << leftovers << "\n";
     if (verbosity != Verbosity::Quiet) {
         std::fprintf(stderr, "netsculpt: ran %s in %.1f s; outputs in %s\n",
                      a.script.string().c_str(), seconds, out.string().c_str());
