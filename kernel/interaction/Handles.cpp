@@ -134,13 +134,14 @@ std::vector<Handle> connectTargets(const Sculpture& s, const CompiledSculpture& 
     const int last = p.rows - 1;
     std::vector<Vec3> lastRow;
     for (int c = 0; c < p.columns; ++c) lastRow.push_back(knotPosition(compiled, dragged, last, c));
+    const Vec3 rowDirection = lastRow.back() - lastRow.front();
     for (const auto& [id, rail] : s.rails) {
         const Curve& curve = rail.curve();
         if (p.closed && !curve.closed()) continue; // a tube connects to a closed rail only
-        double end = 1;
+        double span = 0; // of an open rail, as a fraction of its length: the row's
         if (!curve.closed()) { // the whole last row must fit on an open rail
-            end = 1 - (p.columns - 1) * topSpacing(s, dragged) / curve.length();
-            if (end < 0) continue;
+            span = (p.columns - 1) * topSpacing(s, dragged) / curve.length();
+            if (span > 1) continue;
         }
         bool reverse = false;
         if (p.closed) {
@@ -149,7 +150,17 @@ std::vector<Handle> connectTargets(const Sculpture& s, const CompiledSculpture& 
             for (double t : railStops(true, 64)) ring.push_back(curve.pointAt(t));
             reverse = (signedArea(ring) > 0) != (signedArea(lastRow) > 0);
         }
-        for (double t : railStops(curve.closed(), settings.railPointsPerRail, end)) {
+        for (double start : railStops(curve.closed(), settings.railPointsPerRail, 1 - span)) {
+            double t = start; // where knot 0 goes: the sphere
+            if (!curve.closed()) {
+                // The row covers [start, start + span] either way round: reversed, knot 0 is
+                // tied at the far end and the row runs back towards the rail's first point.
+                const double end = std::min(start + span, 1.0);
+                reverse = rowDirection.dot(curve.pointAt(end) - curve.pointAt(start)) < 0;
+                if (reverse) t = end;
+            } else if (!p.closed) { // a sheet on a ring: its row runs along the rail's direction
+                reverse = rowDirection.dot(curve.tangentAt(t)) < 0;
+            }
             Handle h;
             h.kind = HandleKind::ConnectTarget;
             h.rail = id;
@@ -157,8 +168,6 @@ std::vector<Handle> connectTargets(const Sculpture& s, const CompiledSculpture& 
             h.t = t;
             h.position = curve.pointAt(t);
             h.pixelRadius = settings.pixelRadius;
-            if (!p.closed && lastRow.size() >= 2) // a sheet: its last row runs along the rail's direction
-                reverse = (lastRow.back() - lastRow.front()).dot(curve.tangentAt(t)) < 0;
             h.reverse = reverse;
             out.push_back(h);
         }

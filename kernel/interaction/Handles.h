@@ -64,7 +64,9 @@ std::vector<Handle> handlesForMode(Mode mode, const Sculpture& s, const Compiled
                                    const HandleSettings& settings = {});
 
 /// Rail positions piece `dragged` may connect its last row to (the Connect drop targets): every
-/// rail a tube may join (closed rails for a closed piece), on open rails only where it fits.
+/// rail a tube may join (closed rails for a closed piece), on open rails only where it fits. A
+/// sphere is where the row's knot 0 goes; on an open rail a row that runs against the rail is
+/// tied reversed, knot 0 at the far end of the stretch it covers.
 std::vector<Handle> connectTargets(const Sculpture& s, const CompiledSculpture& compiled, PieceId dragged,
                                    const HandleSettings& settings = {});
 

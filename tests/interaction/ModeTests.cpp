@@ -334,3 +334,32 @@ TEST_CASE("hover, selection and a refused command", "[interaction]") {
     CHECK_THAT(ui.message(), Catch::Matchers::Contains("rows"));
     CHECK(scene.doc.hash() == hash);
 }
+
+TEST_CASE("connect: a sheet running against an open rail is offered only places where its row fits",
+          "[interaction]") {
+    // A sheet of 5 knots 0.25 m apart hangs from a 1 m rail above the beam that runs the other
+    // way (-y; the beam runs +y): its last row is tied to the beam reversed, from the drop
+    // point back towards the beam's start, so it fits from t = 0.5 (1 m of the 2 m beam) to 1.
+    Scene scene;
+    const RailId upper = scene.doc.execute(AddRailCommand{"upper",
+                             lineRail({2.5, 0.5, 5}, {2.5, -0.5, 5})}).rails.front();
+    const PieceId sheet = attachPiece(scene.doc, upper, 5, 4, 0.3);
+    Interaction ui(scene.doc, scene.camera);
+    const std::vector<Handle> targets =
+        connectTargets(scene.doc.sculpture(), scene.doc.compiled(), sheet);
+    std::vector<double> onBeam;
+    for (const Handle& h : targets) {
+        if (h.rail != scene.beam) continue;
+        CHECK(h.reverse);
+        onBeam.push_back(h.t);
+        INFO("t = " << h.t);
+        // Every sphere offered is a drop the model takes.
+        const bool connected = ui.execute(ConnectToRailCommand{sheet, h.rail, h.t, h.reverse});
+        INFO(ui.message());
+        CHECK(connected);
+        if (connected) ui.undo();
+    }
+    REQUIRE(onBeam.size() == 12);
+    CHECK(onBeam.front() == Approx(0.5));
+    CHECK(onBeam.back() == Approx(1.0));
+}
