@@ -3,6 +3,7 @@
 
 #include "App.h"
 
+#include "ExportNotice.h"
 #include "Screenshot.h"
 
 #include "commands/Journal.h"
@@ -177,7 +178,8 @@ bool App::exportTo(const std::filesystem::path& path) {
         ExportOptions o;
         o.colourBy = colourBy_ == ColourBy::Tension ? "tension" : "piece";
         exportFile(*doc_, path, o);
-        notify("exported " + path.string(), false);
+        const Notice notice = exportNotice(path.string(), doc_->isRelaxed(), previewScaleShown());
+        notify(notice.text, notice.error);
     });
 }
 
