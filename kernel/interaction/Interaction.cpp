@@ -26,6 +26,12 @@ std::vector<Gear> gearLadder(const Sculpture& s, const Piece& p) {
     return ladder;
 }
 
+/// The bar length of `p`'s last row at `column`: a piece graded by row has its last row's
+/// everywhere in that row (BarProfile::at takes a row index then, not a column).
+double lastRowBar(const Piece& p, int column) {
+    return p.bar.at(p.bar.axis == BarAxis::Row ? p.rows - 1 : column);
+}
+
 /// A piece whose top row hangs from `rail`, or none.
 PieceId pieceOnRail(const Sculpture& s, RailId rail) {
     for (const auto& [id, piece] : s.pieces)
@@ -245,7 +251,8 @@ void Interaction::clickHandle(const Handle& h) {
         args.parent = h.piece;
         args.gear = Gear{1, 1};
         args.rows = settings_.newPieceRows;
-        args.bar = s.hasPiece(h.piece) ? s.piece(h.piece).bar.at(h.column) : settings_.newPieceBar;
+        args.bar = s.hasPiece(h.piece) ? lastRowBar(s.piece(h.piece), h.column)
+                                       : settings_.newPieceBar;
         if (execute(AttachToPieceCommand{args})) selected_ = lastCreated_.pieces.front();
         break;
     }

@@ -72,6 +72,28 @@ TEST_CASE("new net: a click on an open rail spans it, a click on a last row hang
     for (const Handle& h : ui.handles()) CHECK_FALSE((h.kind == HandleKind::LastRow && h.piece == scene.net));
 }
 
+TEST_CASE("new net: a piece hung from a last row graded by row takes that row's bar length",
+          "[interaction]") {
+    // The crown net's bars run from 0.35 m at the top to 0.3 m at its last row (row 5): a piece
+    // clicked below it continues with 0.3 m. (Read at the sphere's column, 12, as if the grading
+    // ran by column, they were 0.35 - 0.05 * 12 / 5 = 0.23 m.)
+    Scene scene;
+    scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, 5, 0.3});
+    Interaction ui(scene.doc, scene.camera);
+    ui.setMode(Mode::NewNet);
+    const Handle below = findHandle(ui, [&](const Handle& h) {
+        return h.kind == HandleKind::LastRow && h.piece == scene.net;
+    });
+    REQUIRE(below.column == 12);
+    clickHandle(ui, below);
+    INFO(ui.message());
+    REQUIRE(scene.doc.sculpture().pieces.size() == 2);
+    const Piece& child = scene.doc.sculpture().pieces.rbegin()->second;
+    CHECK(child.parentTop().parents == std::vector<PieceId>{scene.net});
+    CHECK(child.bar.at(0) == 0.3);
+    CHECK(child.bar.at(child.columns - 1) == 0.3);
+}
+
 TEST_CASE("rows: dragging a last-row sphere down 40 px adds 5 rows as one undo step", "[interaction]") {
     Scene scene;
     TempFile journal("rows.netj");
