@@ -28,9 +28,6 @@ const char* actionTitle(FileAction a) {
     return "";
 }
 
-bool dropsChanges(FileAction a) { return a == FileAction::New || a == FileAction::Open || a == FileAction::Quit; }
-bool needsPath(FileAction a) { return a != FileAction::New && a != FileAction::Quit; }
-
 const char* shortcut(Mode m) {
     switch (m) {
     case Mode::View: return "V / 1";
@@ -57,45 +54,37 @@ const char* modeHint(Mode m) {
     return "";
 }
 
+/// The questions' actions, done by the App.
+class AppFiles : public FileActions {
+  public:
+    explicit AppFiles(App& app) : app_(app) {}
+    bool isClean() const override { return app_.document().isClean(); }
+    std::optional<std::filesystem::path> currentPath() const override { return app_.currentPath(); }
+    bool save(const std::filesystem::path& path) override { return app_.saveJournal(path); }
+    void act(FileAction action) override {
+        if (action == FileAction::New) app_.newDocument();
+        else if (action == FileAction::Quit) app_.quit();
+    }
+    void act(FileAction action, const std::string& path) override {
+        switch (action) {
+        case FileAction::Open: app_.openJournal(path); break;
+        case FileAction::ImportRails: app_.importRails(path); break;
+        case FileAction::Export: app_.exportTo(path); break;
+        case FileAction::RunScript: app_.runScript(path); break;
+        case FileAction::Screenshot: app_.takeScreenshot(path); break;
+        default: break;
+        }
+    }
+
+  private:
+    App& app_;
+};
+
 } // namespace
 
 void Panels::request(FileAction action, App& app) {
-    if (dropsChanges(action) && !app.document().isClean()) {
-        askUnsaved_ = action;
-        openUnsavedPopup_ = true;
-        return;
-    }
-    perform(action, app);
-}
-
-void Panels::perform(FileAction action, App& app) {
-    if (action == FileAction::Save && app.currentPath()) {
-        app.saveJournal(*app.currentPath());
-        return;
-    }
-    if (!needsPath(action)) {
-        if (action == FileAction::New) app.newDocument();
-        else app.quit();
-        return;
-    }
-    askPath_ = action == FileAction::Save ? FileAction::SaveAs : action;
-    if (action == FileAction::Screenshot) path_ = "netsculpt-studio.png";
-    else if (app.currentPath() && (action == FileAction::SaveAs || action == FileAction::Open))
-        path_ = app.currentPath()->string();
-    openPathPopup_ = true;
-}
-
-void Panels::performWithPath(FileAction action, App& app, const std::string& path) {
-    switch (action) {
-    case FileAction::Open: app.openJournal(path); break;
-    case FileAction::Save:
-    case FileAction::SaveAs: app.saveJournal(path); break;
-    case FileAction::ImportRails: app.importRails(path); break;
-    case FileAction::Export: app.exportTo(path); break;
-    case FileAction::RunScript: app.runScript(path); break;
-    case FileAction::Screenshot: app.takeScreenshot(path); break;
-    default: break;
-    }
+    AppFiles files(app);
+    questions_.request(action, files);
 }
 
 void Panels::draw(App& app) {
@@ -289,53 +278,50 @@ void Panels::drawDialogs(App& app) {
         ImGui::EndPopup();
     }
 
-    if (openUnsavedPopup_) ImGui::OpenPopup("Unsaved changes");
-    openUnsavedPopup_ = false;
-    if (ImGui::BeginPopupModal("Unsaved changes", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-        ImGui::Text("This sculpture has changes that are not saved.");
-        const FileAction then = askUnsaved_.value_or(FileAction::New);
-        if (ImGui::Button("Save")) {
-            ImGui::CloseCurrentPopup();
-            askUnsaved_.reset();
-            if (app.currentPath() && app.saveJournal(*app.currentPath())) perform(then, app);
-            else perform(FileAction::SaveAs, app);
-        }
-        ImGui::SameLine();
-        if (ImGui::Button("Discard")) {
-            ImGui::CloseCurrentPopup();
-            askUnsaved_.reset();
-            perform(then, app);
-        }
-        ImGui::SameLine();
-        if (ImGui::Button("Cancel")) {
-            ImGui::CloseCurrentPopup();
-            askUnsaved_.reset();
-        }
-        ImGui::EndPopup();
-    }
+    drawUnsaved(app);
+    drawPath(app);
+}
 
-    if (openPathPopup_) ImGui::OpenPopup("File");
-    openPathPopup_ = false;
-    if (ImGui::BeginPopupModal("File", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-        const FileAction action = askPath_.value_or(FileAction::Open);
-        ImGui::Text("%s", actionTitle(action));
-        if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
-        ImGui::SetNextItemWidth(460);
-        const bool enter = ImGui::InputText("##path", &path_,
-                                            ImGuiInputTextFlags_EnterReturnsTrue |
-                                                ImGuiInputTextFlags_AutoSelectAll);
-        if ((ImGui::Button("OK") || enter) && !path_.empty()) {
-            ImGui::CloseCurrentPopup();
-            askPath_.reset();
-            performWithPath(action, app, path_);
-        }
-        ImGui::SameLine();
-        if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) {
-            ImGui::CloseCurrentPopup();
-            askPath_.reset();
-        }
-        ImGui::EndPopup();
+void Panels::drawUnsaved(App& app) {
+    if (questions_.takeOpenedUnsaved()) ImGui::OpenPopup("Unsaved changes");
+    if (!ImGui::BeginPopupModal("Unsaved changes", nullptr, ImGuiWindowFlags_AlwaysAutoResize))
+        return;
+    ImGui::Text("This sculpture has changes that are not saved.");
+    std::optional<UnsavedAnswer> answer;
+    if (ImGui::Button("Save")) answer = UnsavedAnswer::Save;
+    ImGui::SameLine();
+    if (ImGui::Button("Discard")) answer = UnsavedAnswer::Discard;
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel")) answer = UnsavedAnswer::Cancel;
+    if (answer) {
+        ImGui::CloseCurrentPopup();
+        AppFiles files(app);
+        questions_.answerUnsaved(*answer, files);
     }
+    ImGui::EndPopup();
+}
+
+void Panels::drawPath(App& app) {
+    if (questions_.takeOpenedPath()) ImGui::OpenPopup("File");
+    if (!ImGui::BeginPopupModal("File", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+    ImGui::Text("%s", actionTitle(questions_.askingPath().value_or(FileAction::Open)));
+    if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
+    ImGui::SetNextItemWidth(460);
+    std::string& path = questions_.path();
+    const bool enter = ImGui::InputText("##path", &path,
+                                        ImGuiInputTextFlags_EnterReturnsTrue |
+                                            ImGuiInputTextFlags_AutoSelectAll);
+    if ((ImGui::Button("OK") || enter) && !path.empty()) {
+        ImGui::CloseCurrentPopup();
+        AppFiles files(app);
+        questions_.answerPath(std::string(path), files);
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) {
+        ImGui::CloseCurrentPopup();
+        questions_.cancelPath();
+    }
+    ImGui::EndPopup();
 }
 
 } // namespace netsculpt::studio

@@ -3,6 +3,8 @@
 // field editable by typing, through commands), rails, the report summary, the solver's status,
 // the status line, and the modal questions (file paths, unsaved changes, restoring a session).
 
+#include "FileQuestions.h"
+
 #include "model/Ids.h"
 
 #include <optional>
@@ -11,8 +13,6 @@
 namespace netsculpt::studio {
 
 class App;
-
-enum class FileAction { New, Open, Save, SaveAs, ImportRails, Export, RunScript, Screenshot, Quit };
 
 class Panels {
   public:
@@ -39,13 +39,10 @@ class Panels {
     void drawStatus(App& app);
     void drawTensionScale(double maxTension);
     void drawDialogs(App& app);
-    void perform(FileAction action, App& app);
-    void performWithPath(FileAction action, App& app, const std::string& path);
+    void drawUnsaved(App& app);
+    void drawPath(App& app);
 
-    std::optional<FileAction> askPath_;    ///< the path dialog is open for this action
-    std::optional<FileAction> askUnsaved_; ///< the unsaved-changes question is open for this action
-    bool openPathPopup_ = false, openUnsavedPopup_ = false;
-    std::string path_;
+    FileQuestions questions_;
     PieceId colourPiece_;
     float colour_[3] = {0, 0, 0};
     bool colourPending_ = false;
