@@ -99,6 +99,18 @@ std::vector<Handle> handlesForMode(Mode mode, const Sculpture& s, const Compiled
                 out.push_back(pieceHandle(HandleKind::ColumnsEdge, p, 0, middleColumn, compiled, settings));
             break;
         case Mode::BarLength: {
+            if (p.bar.axis == BarAxis::Row && p.bar.first != p.bar.last) {
+                // Graded by row (never seamed): its top and its last row, each set on its own.
+                // The top's sphere sits on row 1, where the top bars end (row 0 may be another
+                // piece's last row, with a sphere of its own).
+                for (int row : {0, last}) {
+                    const int at = row == 0 && last >= 2 ? 1 : row;
+                    Handle h = pieceHandle(HandleKind::BarEnd, p, at, 0, compiled, settings);
+                    h.barRow = row;
+                    out.push_back(h);
+                }
+                break;
+            }
             const PieceId left = s.leftPartner(id), right = s.rightPartner(id);
             if (!left) {
                 Handle h = pieceHandle(HandleKind::BarEnd, p, p.rows / 2, 0, compiled, settings);

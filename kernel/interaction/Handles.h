@@ -33,7 +33,8 @@ enum class HandleKind {
     TopKnot,        ///< Divide: top knot (piece, column) where the piece may be split
     RowsEnd,        ///< Rows: a piece's last row (piece)
     ColumnsEdge,    ///< Columns: a piece's top edge (piece)
-    BarEnd,         ///< BarLength: a piece's first or last column, or a seam (piece, barColumn)
+    BarEnd,         ///< BarLength: a piece's first or last column, or a seam (piece, barColumn);
+                    ///< the top or last row of a piece graded by row (piece, barRow)
     ConnectSource,  ///< Connect: a last row that may be dragged to a rail (piece)
     ConnectTarget,  ///< Connect, while dragging: a rail position to drop on (rail, t, reverse)
 };
@@ -50,6 +51,7 @@ struct Handle {
     double t = 0;                 ///< rail position (RailPoint, ConnectTarget)
     bool reverse = false;         ///< ConnectTarget: the least-twist direction for the dragged piece
     std::optional<int> barColumn; ///< BarEnd: the column set_bar_length gets (nullopt = whole piece)
+    std::optional<int> barRow;    ///< BarEnd: the row set_bar_length gets (a piece graded by row)
 };
 
 /// Tunables of the modes (defaults are what the studio uses).

@@ -182,7 +182,9 @@ void Interaction::onPress(MouseButton button, Modifiers mods) {
                     dragStartValue_ = double(at - ladder.begin());
                 }
                 break;
-            case HandleKind::BarEnd: dragStartValue_ = p.bar.at(h.barColumn.value_or(0)); break;
+            case HandleKind::BarEnd:
+                dragStartValue_ = p.bar.at(h.barRow ? *h.barRow : h.barColumn.value_or(0));
+                break;
             default: break;
             }
         }
@@ -293,9 +295,9 @@ void Interaction::dragHandleTo(double y) {
         const double length = std::round((dragStartValue_ + down * settings_.barMetresPerPixel) * 1000) / 1000;
         value = std::max(0.001, length);
         perUnit = 1000;
-        const std::optional<int> column = h.barColumn;
-        commandFor = [id, column](double v) {
-            return SetBarLengthCommand{id, column, std::nullopt, v};
+        const std::optional<int> column = h.barColumn, row = h.barRow;
+        commandFor = [id, column, row](double v) {
+            return SetBarLengthCommand{id, column, row, v};
         };
         break;
     }

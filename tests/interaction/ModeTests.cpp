@@ -208,6 +208,34 @@ TEST_CASE("bar length: a drag down lengthens the bars, a seam moves both partner
     CHECK(s.piece(parts[0]).bar.at(0) == Approx(0.40).margin(1e-12));
 }
 
+TEST_CASE("bar length: a piece graded by row has a sphere for its top and its last row, and a "
+          "drag keeps the grading", "[interaction]") {
+    Scene scene;
+    scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, 5, 0.3}); // 0.35 m -> 0.3 m
+    scene.doc.endGesture();
+    const std::uint64_t graded = scene.doc.hash();
+    Interaction ui(scene.doc, scene.camera);
+    ui.setMode(Mode::BarLength);
+    REQUIRE(ui.handles().size() == 2);
+    const Handle lastRow = findHandle(ui, [](const Handle& h) { return h.barRow == 5; });
+    CHECK(lastRow.row == 5);
+    CHECK_FALSE(lastRow.barColumn.has_value());
+    dragHandle(ui, lastRow, 10); // 2 mm per px
+    const BarProfile& bar = scene.doc.sculpture().piece(scene.net).bar;
+    CHECK(bar.axis == BarAxis::Row);
+    CHECK(bar.at(0) == 0.35);
+    CHECK(bar.at(5) == Approx(0.32).margin(1e-12));
+    ui.refresh();
+    const Handle top = findHandle(ui, [](const Handle& h) { return h.barRow == 0; });
+    CHECK(top.row == 1); // where the top bars end
+    dragHandle(ui, top, 25);
+    CHECK(scene.doc.sculpture().piece(scene.net).bar.at(0) == Approx(0.40).margin(1e-12));
+    CHECK(scene.doc.sculpture().piece(scene.net).bar.at(5) == Approx(0.32).margin(1e-12));
+    ui.undo();
+    ui.undo(); // two drags, two undo steps
+    CHECK(scene.doc.hash() == graded);
+}
+
 namespace {
 
 /// Drags handle `h` by `dy` pixels in one move, as a fast mouse does between two frames.
