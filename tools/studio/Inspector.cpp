@@ -4,6 +4,7 @@
 #include "Panels.h"
 
 #include "App.h"
+#include "TypedValue.h"
 
 #include "model/Compiler.h"
 
@@ -21,7 +22,10 @@ constexpr ImGuiInputTextFlags kOnEnter = ImGuiInputTextFlags_EnterReturnsTrue;
 
 bool editDouble(const char* label, double value, double& out, const char* format = "%.4g") {
     out = value;
-    return ImGui::InputDouble(label, &out, 0, 0, format, kOnEnter) && std::isfinite(out) && out != value;
+    const bool entered = ImGui::InputDouble(label, &out, 0, 0, format, kOnEnter);
+    if (entered && isEdit(value, out, format)) return true;
+    out = value; // Enter on the shown (rounded) text leaves the value as it is
+    return false;
 }
 
 std::string railLabel(const Sculpture& s, RailId id) {
