@@ -3,7 +3,7 @@
 
 #include "App.h"
 
-#include "ExportNotice.h"
+#include "Notices.h"
 #include "Screenshot.h"
 
 #include "commands/Journal.h"
@@ -62,7 +62,10 @@ void App::buildInitialDocument() {
     if (options_.open) {
         std::vector<std::string> warnings;
         *doc_ = Document::load(*options_.open, &warnings);
-        for (const std::string& w : warnings) notify(w, false);
+        if (!warnings.empty()) {
+            const Notice notice = openNotice("opened " + options_.open->string(), warnings);
+            notify(notice.text, notice.error);
+        }
         if (!isSnapshot(*options_.open)) // a snapshot is not overwritten by a journal on save
             currentPath_ = *options_.open;
     } else if (options_.demoKnots > 0) {
@@ -116,11 +119,11 @@ void App::answerRestore(bool restore) {
             std::vector<std::string> warnings;
             Document restored = Document::open(sessionPath_, &warnings); // keeps appending to the session
             replaceDocument(std::move(restored));
-            for (const std::string& w : warnings) notify(w, false);
-        })) {
-        notify("restored the last session (" + sessionPath_.string() + ")", false);
+            const std::string done = "restored the last session (" + sessionPath_.string() + ")";
+            const Notice notice = openNotice(done, warnings);
+            notify(notice.text, notice.error);
+        }))
         return;
-    }
     attempt(*this, "session journal", [&] { attachSession(); });
 }
 
@@ -151,8 +154,8 @@ bool App::openJournal(const std::filesystem::path& path) {
         currentPath_.reset();
         if (!isSnapshot(path)) // a snapshot is not overwritten by a journal on save
             currentPath_ = path;
-        for (const std::string& w : warnings) notify(w, false);
-        notify("opened " + path.string(), false);
+        const Notice notice = openNotice("opened " + path.string(), warnings);
+        notify(notice.text, notice.error);
     });
 }
 

@@ -1,7 +1,8 @@
 // The status line after an export: plain for a relaxed shape, a warning naming the stiffness and
-// the factor for a soft preview's shape, and for a shape not relaxed at all.
+// the factor for a soft preview's shape, and for a shape not relaxed at all; after an open or a
+// restore: the warnings of reading the journal with it.
 
-#include "ExportNotice.h"
+#include "Notices.h"
 
 #include <catch2/catch.hpp>
 
@@ -34,4 +35,18 @@ TEST_CASE("export notice: a shape not relaxed at all (the initial geometry, a re
     CHECK_THAT(notice.text, Catch::Matchers::Contains("not the relaxed shape") &&
                                 Catch::Matchers::Contains("are not final"));
     CHECK_THAT(notice.text, !Catch::Matchers::Contains("times too large"));
+}
+
+TEST_CASE("open notice: a torn last entry dropped is shown with the outcome, in the error colour",
+          "[studio]") {
+    const std::string torn = "s.netj line 9: dropped a torn last entry (no end of line, so it "
+                             "was never acknowledged)";
+    const Notice restored = openNotice("restored the last session (s.netj)", {torn});
+    CHECK(restored.error);
+    CHECK(restored.text == "restored the last session (s.netj), but " + torn);
+    const Notice two = openNotice("opened d.netj", {"first", "second"});
+    CHECK(two.text == "opened d.netj, but first; second");
+    const Notice clean = openNotice("opened d.netj", {});
+    CHECK_FALSE(clean.error);
+    CHECK(clean.text == "opened d.netj");
 }

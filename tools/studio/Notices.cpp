@@ -1,4 +1,4 @@
-#include "ExportNotice.h"
+#include "Notices.h"
 
 #include <cmath>
 #include <cstdio>
@@ -21,6 +21,13 @@ Notice exportNotice(const std::string& path, bool relaxed, double previewScale) 
     return {done + ": not the relaxed shape, so its forces (tensions, rail loads) are not final" +
                 refine,
             true};
+}
+
+Notice openNotice(const std::string& done, const std::vector<std::string>& warnings) {
+    Notice notice{done, !warnings.empty()};
+    for (std::size_t i = 0; i < warnings.size(); ++i)
+        notice.text += (i == 0 ? ", but " : "; ") + warnings[i];
+    return notice;
 }
 
 } // namespace netsculpt::studio
