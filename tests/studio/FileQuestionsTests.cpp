@@ -22,7 +22,8 @@ struct FakeFiles : FileActions {
     std::optional<std::filesystem::path> currentPath() const override { return path; }
     bool save(const std::filesystem::path& to) override {
         done.push_back("save " + to.string());
-        if (!saveWorks) return false;
+        if (!saveWorks)
+            return false;
         path = to;
         clean = true;
         return true;
@@ -40,7 +41,8 @@ using Done = std::vector<std::string>;
 } // namespace
 
 TEST_CASE("file questions: Save before Quit of an untitled design asks for a path, saves, then "
-          "quits", "[studio]") {
+          "quits",
+          "[studio]") {
     FakeFiles files;
     FileQuestions questions;
     questions.request(FileAction::Quit, files);
@@ -55,7 +57,8 @@ TEST_CASE("file questions: Save before Quit of an untitled design asks for a pat
 }
 
 TEST_CASE("file questions: Save before Open of an untitled design saves, then asks which file to "
-          "open", "[studio]") {
+          "open",
+          "[studio]") {
     FakeFiles files;
     FileQuestions questions;
     questions.request(FileAction::Open, files);
@@ -86,7 +89,8 @@ TEST_CASE("file questions: a save that fails or a path question cancelled does n
 }
 
 TEST_CASE("file questions: a titled design is saved in place, Discard and Cancel, a clean design "
-          "is not asked about", "[studio]") {
+          "is not asked about",
+          "[studio]") {
     FakeFiles files;
     files.path = "a.netj";
     FileQuestions questions;

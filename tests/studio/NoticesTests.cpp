@@ -15,7 +15,8 @@ TEST_CASE("export notice: a relaxed shape is exported without a warning", "[stud
 }
 
 TEST_CASE("export notice: a preview's shape warns with its stiffness and how far off its forces "
-          "read", "[studio]") {
+          "read",
+          "[studio]") {
     const Notice notice = exportNotice("report.json", false, 0.01);
     CHECK(notice.error);
     CHECK_THAT(notice.text, Catch::Matchers::StartsWith("exported report.json: not the relaxed") &&
@@ -29,7 +30,8 @@ TEST_CASE("export notice: a preview's shape warns with its stiffness and how far
 }
 
 TEST_CASE("export notice: a shape not relaxed at all (the initial geometry, a refine under way) "
-          "warns that its forces are not final", "[studio]") {
+          "warns that its forces are not final",
+          "[studio]") {
     const Notice notice = exportNotice("a.obj", false, 1.0);
     CHECK(notice.error);
     CHECK_THAT(notice.text, Catch::Matchers::Contains("not the relaxed shape") &&

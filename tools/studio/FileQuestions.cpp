@@ -7,7 +7,9 @@ namespace {
 bool dropsChanges(FileAction a) {
     return a == FileAction::New || a == FileAction::Open || a == FileAction::Quit;
 }
-bool needsPath(FileAction a) { return a != FileAction::New && a != FileAction::Quit; }
+bool needsPath(FileAction a) {
+    return a != FileAction::New && a != FileAction::Quit;
+}
 
 } // namespace
 
@@ -23,20 +25,26 @@ void FileQuestions::request(FileAction action, FileActions& files) {
 
 void FileQuestions::answerUnsaved(UnsavedAnswer answer, FileActions& files) {
     const std::optional<FileAction> then = std::exchange(askUnsaved_, std::nullopt);
-    if (!then || answer == UnsavedAnswer::Cancel) return;
-    if (answer == UnsavedAnswer::Discard) return perform(*then, files);
+    if (!then || answer == UnsavedAnswer::Cancel)
+        return;
+    if (answer == UnsavedAnswer::Discard)
+        return perform(*then, files);
     const auto path = files.currentPath();
-    if (path && files.save(*path)) return perform(*then, files);
+    if (path && files.save(*path))
+        return perform(*then, files);
     perform(FileAction::SaveAs, files);
     afterSave_ = then; // once saved under the path asked for
 }
 
 void FileQuestions::answerPath(const std::string& path, FileActions& files) {
-    if (path.empty() || !askPath_) return;
+    if (path.empty() || !askPath_)
+        return;
     const FileAction action = *std::exchange(askPath_, std::nullopt);
     const std::optional<FileAction> then = std::exchange(afterSave_, std::nullopt);
-    if (action != FileAction::SaveAs) return files.act(action, path);
-    if (files.save(path) && then) perform(*then, files);
+    if (action != FileAction::SaveAs)
+        return files.act(action, path);
+    if (files.save(path) && then)
+        perform(*then, files);
 }
 
 void FileQuestions::cancelPath() {
@@ -50,9 +58,11 @@ void FileQuestions::perform(FileAction action, FileActions& files) {
         files.save(*current);
         return;
     }
-    if (!needsPath(action)) return files.act(action);
+    if (!needsPath(action))
+        return files.act(action);
     askPath_ = action == FileAction::Save ? FileAction::SaveAs : action;
-    if (action == FileAction::Screenshot) path_ = "netsculpt-studio.png";
+    if (action == FileAction::Screenshot)
+        path_ = "netsculpt-studio.png";
     else if (current && (action == FileAction::SaveAs || action == FileAction::Open))
         path_ = current->string();
     openedPath_ = true;

@@ -7,7 +7,8 @@ namespace netsculpt::studio {
 
 Notice exportNotice(const std::string& path, bool relaxed, double previewScale) {
     const std::string done = "exported " + path;
-    if (relaxed) return {done, false};
+    if (relaxed)
+        return {done, false};
     const std::string refine = "; Refine, then export again for the net maker and the installer";
     if (previewScale > 0 && previewScale < 1) {
         // At the material's stiffness a preview's stretch reads as forces 1/scale too large.
