@@ -73,12 +73,6 @@ int interruptWhenCaught(pid_t pid) {
     return caught && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-fs::path writeScript(const fs::path& folder, const std::string& name, const std::string& text) {
-    const fs::path file = folder / name;
-    std::ofstream(file) << text;
-    return file;
-}
-
 /// A tube of 24 x 20 knots on a ring, then `rest`.
 std::string tubeScript(const std::string& rest) {
     return R"(local ns = require "netsculpt"

@@ -53,6 +53,14 @@ inline std::filesystem::path freshFolder(const std::string& name) {
     return folder;
 }
 
+/// Writes `text` to folder/name: the path.
+inline std::filesystem::path writeScript(const std::filesystem::path& folder,
+                                         const std::string& name, const std::string& text) {
+    const std::filesystem::path file = folder / name;
+    std::ofstream(file) << text;
+    return file;
+}
+
 inline std::string quoted(const std::filesystem::path& path) {
     std::string out = "'"; // appended piecewise: "'" + std::string&& trips GCC 12's -Wrestrict
     out += path.string();

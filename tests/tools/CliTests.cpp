@@ -36,12 +36,6 @@ doc:redo()
 print("hash " .. doc:hash())
 )";
 
-fs::path writeScript(const fs::path& folder, const std::string& name, const std::string& text) {
-    const fs::path file = folder / name;
-    std::ofstream(file) << text;
-    return file;
-}
-
 /// The "hash 0123..." a script printed.
 std::string printedHash(const std::string& output) {
     const auto at = output.find("hash ");
