@@ -302,9 +302,11 @@ nlohmann::json buildReport(const Sculpture& s, const CompiledSculpture& c,
         {"within_tolerance", relative <= status.tolerance},
         {"relaxed", status.relaxed},
         {"note",
-         status.relaxed
-             ? "relaxed: the rails' reactions should carry the total weight to the tolerance"
-             : "not relaxed: the reactions balance the weight only after a converged relaxation"}};
+         std::string(status.relaxed ? "relaxed: the rails' reactions should carry the "
+                                      "total weight"
+                                    : "not relaxed: the reactions balance the weight") +
+             (windForce != Vec3{} ? " and the wind" : "") +
+             (status.relaxed ? " to the tolerance" : " only after a converged relaxation")}};
 
     json pieces = json::array();
     for (const auto& [id, piece] : s.pieces)

@@ -48,6 +48,16 @@ std::uint64_t wholeCount(double value, const char* option) {
     return std::uint64_t(value);
 }
 
+/// " (its wind, 0.05 N/m towards (0, 1, 0))" for a document whose shape was relaxed under wind,
+/// "" for gravity alone: a document is relaxed again under the load its shape was relaxed under.
+std::string windClause(const std::optional<Wind>& wind) {
+    if (!wind)
+        return "";
+    const Vec3& d = wind->direction;
+    return " (its wind, " + formatNumber(wind->pressure) + " N/m towards (" + formatNumber(d.x) +
+           ", " + formatNumber(d.y) + ", " + formatNumber(d.z) + "))";
+}
+
 std::string hashText(std::uint64_t hash) {
     char text[17];
     std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
@@ -213,6 +223,7 @@ int relaxDocument(const RelaxArgs& a, Verbosity verbosity) {
     options.solver.tolerance = a.tolerance;
     options.solver.maxSeconds = a.maxSeconds;
     options.solver.maxSteps = a.maxSteps;
+    options.solver.wind = doc.shapeWind();
     ProgressLine progress(verbosity);
     if (progress.enabled())
         options.solver.progress = [&progress](const RelaxProgress& p) { progress.update(p); };
@@ -221,7 +232,8 @@ int relaxDocument(const RelaxArgs& a, Verbosity verbosity) {
     const RelaxResult result = doc.relax(options);
     progress.clear(); // the result is this command's output, below: not also a message
     doc.saveSnapshot(snapshot);
-    std::cout << a.document.string() << ": " << describeRelaxResult(result) << "\n";
+    std::cout << a.document.string() << windClause(options.solver.wind) << ": "
+              << describeRelaxResult(result) << "\n";
     if (verbosity != Verbosity::Quiet)
         std::cerr << "netsculpt: wrote " << snapshot.string() << "\n";
     if (interrupt.requested())
@@ -248,6 +260,7 @@ int relaxUnlessRelaxed(Document& doc, const fs::path& document, bool relaxFirst,
         return 0;
     }
     DocumentRelaxOptions options;
+    options.solver.wind = doc.shapeWind(); // a wind load case stays one
     ProgressLine progress(verbosity);
     if (progress.enabled())
         options.solver.progress = [&progress](const RelaxProgress& p) { progress.update(p); };
@@ -260,8 +273,8 @@ int relaxUnlessRelaxed(Document& doc, const fs::path& document, bool relaxFirst,
                           std::to_string(result.steps) + " steps; nothing was written");
     if (verbosity != Verbosity::Quiet || !result.converged)
         std::cerr << "netsculpt: " << document.string()
-                  << " holds no relaxed shape; relaxed it for " << purpose << ": "
-                  << describeRelaxResult(result) << "\n";
+                  << " holds no relaxed shape; relaxed it for " << purpose
+                  << windClause(options.solver.wind) << ": " << describeRelaxResult(result) << "\n";
     return result.converged ? 0 : kExitNotConverged;
 }
 
