@@ -37,6 +37,9 @@ DocumentRelaxOptions relaxArgs(const Call& call) {
                              {"tolerance", "max_seconds", "max_steps", "backend", "wind",
                               "continuation", "threads"});
         o.tolerance = args.positive("tolerance", o.tolerance);
+        if (o.tolerance > kMaxTolerance)
+            call.bad("tolerance", args.push("tolerance"),
+                     "a number > 0 and at most " + formatNumber(kMaxTolerance));
         o.maxSeconds = args.positive("max_seconds", o.maxSeconds);
         o.maxSteps = args.whole("max_steps", o.maxSteps, -1, INT64_MAX);
         options.backend = args.choice("backend", relaxerNames(), options.backend);

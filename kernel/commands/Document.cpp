@@ -473,6 +473,10 @@ RelaxResult Document::relax() {
 }
 
 RelaxResult Document::relax(const DocumentRelaxOptions& options) {
+    if (!(options.solver.tolerance > 0 && options.solver.tolerance <= kMaxTolerance))
+        throw UserError("relax: tolerance = " + formatNumber(options.solver.tolerance) +
+                        "; expected a number > 0 and at most " + formatNumber(kMaxTolerance) +
+                        " (the largest residual, in knot weights, that counts as relaxed)");
     State& st = *state_;
     if (!st.relaxer || relaxerKey(options.backend) != st.relaxer->name()) st.relaxer = makeRelaxer(options.backend);
     RelaxOptions solver = options.solver;

@@ -89,6 +89,7 @@ class Document {
     /// equilibrium at the material's stiffness. UserError when the count is not the knot count.
     void adoptPositions(std::vector<Vec3> positions, bool converged);
 
+    /// UserError, the document unchanged, for a tolerance outside (0, kMaxTolerance].
     RelaxResult relax(const DocumentRelaxOptions& options);
     /// With the default options (an overload, not a default argument: g++ 12 warns on the
     /// temporary's std::function when it is destroyed at the caller).

@@ -224,6 +224,27 @@ TEST_CASE("a relaxation that stops early says where the net has not settled") {
     CHECK_FALSE(converged.unsettledAt.has_value());
 }
 
+TEST_CASE("a tolerance too loose for the shape's loads is refused, leaving the shape as it was") {
+    Document doc = fixtureDocument();
+    DocumentRelaxOptions options;
+    options.solver.maxSteps = 1;
+    (void)doc.relax(options); // a shape on its way, not relaxed
+    REQUIRE_FALSE(doc.isRelaxed());
+    const std::vector<Vec3> before = doc.compiled().system.position;
+    for (const double loose : {2.0, 0.0101}) {
+        options.solver.tolerance = loose;
+        options.solver.maxSteps = -1;
+        CHECK_THROWS_WITH(doc.relax(options), Contains("relax: tolerance = " + formatNumber(loose) +
+                                                       "; expected a number > 0 and at most 0.01"));
+        CHECK_FALSE(doc.isRelaxed());
+        CHECK(doc.compiled().system.position == before);
+    }
+    options.solver.tolerance = kMaxTolerance; // the loosest that is taken
+    const RelaxResult loosest = doc.relax(options);
+    REQUIRE(loosest.converged);
+    CHECK(loosest.residual < 0.01);
+}
+
 TEST_CASE("relaxing after an edit of a relaxed shape starts from the tensions it had") {
     // A tube on a ring with a skirt (gear 2) tied to a wider ring below, in real rope, like the
     // installation's core and bell. Lengthening the tube's bars by 5 % slackens the skirt and

@@ -98,6 +98,8 @@ T.case("enums list the valid values", function()
         "attach_to_piece: argument 'gear' must be a gear: 3, 2, 1, 0.5, 1/3", "got 4")
   fails(here(), function() doc:relax{backend = "warp"} end,
         "relax: argument 'backend' must be one of \"auto\"", "got \"warp\"")
+  fails(here(), function() doc:relax{tolerance = 2} end,
+        "relax: argument 'tolerance' must be a number > 0 and at most 0.01, got 2")
   fails(here(), function() doc:export("x.png", {view = "back"}) end,
         "export: argument 'view' must be one of \"top\", \"side\", \"front\", \"perspective\" or \"all\"")
   fails(here(), function() doc:export("x.docx") end, "export: argument 'path' must end in one of .csv")

@@ -118,12 +118,16 @@ TEST_CASE("export --rails writes the rails alone, unrelaxed, and import_rails re
 
 TEST_CASE("Numbers out of range are usage errors that say what is allowed", "[cli]") {
     for (const auto& [bad, message] :
-         {std::pair{"relax d.netj --tolerance 0", "--tolerance: must be a number > 0, got 0"},
+         {std::pair{"relax d.netj --tolerance 0",
+                    "--tolerance: must be a number > 0 and at most 0.01, got 0"},
+          std::pair{"relax d.netj --tolerance 2",
+                    "--tolerance: must be a number > 0 and at most 0.01, got 2"},
           std::pair{"relax d.netj --max-seconds -5", "--max-seconds: must be a number > 0, got -5"},
           std::pair{"run x.lua --max-memory -3", "--max-memory: must be a number >= 0, got -3"},
           std::pair{"export d.netj x.obj --tube-radius -1",
                     "--tube-radius: must be a number >= 0, got -1"},
-          std::pair{"relax d.netj --tolerance inf", "--tolerance: must be a number > 0, got inf"},
+          std::pair{"relax d.netj --tolerance inf",
+                    "--tolerance: must be a number > 0 and at most 0.01, got inf"},
           std::pair{"relax d.netj --max-seconds 1e400",
                     "--max-seconds: must be a number > 0, got 1e400"},
           std::pair{"relax d.netj --max-steps -5",

@@ -53,6 +53,20 @@ CLI::Validator numberAbove(bool zeroAllowed) {
         zeroAllowed ? "NUMBER >= 0" : "NUMBER > 0");
 }
 
+/// A relaxation tolerance: > 0 and at most kMaxTolerance.
+CLI::Validator toleranceRange() {
+    const std::string allowed = "a number > 0 and at most " + formatNumber(kMaxTolerance);
+    return CLI::Validator(
+        [allowed](std::string& text) -> std::string {
+            double value = 0;
+            const bool number = CLI::detail::lexical_cast(text, value);
+            if (number && value > 0 && value <= kMaxTolerance)
+                return {};
+            return "must be " + allowed + ", got " + text;
+        },
+        "NUMBER in (0, " + formatNumber(kMaxTolerance) + "]");
+}
+
 /// A whole number from `lowest` to 10^15 (a count of steps or instructions).
 CLI::Validator wholeNumberFrom(int lowest) {
     const std::string allowed = "a whole number from " + std::to_string(lowest) + " to 10^15";
@@ -120,7 +134,7 @@ void addRelax(CLI::App& app, Options& o) {
         ->check(CLI::IsMember(relaxerNames()));
     relax->add_option("--tolerance", o.relax.tolerance, "Converged when max |F|/(m|g|) is below it")
         ->capture_default_str()
-        ->check(numberAbove(false));
+        ->check(toleranceRange());
     relax->add_option("--max-seconds", o.relax.maxSeconds, "Wall-time limit, s")
         ->capture_default_str()
         ->check(numberAbove(false));
