@@ -100,6 +100,7 @@ struct Document::State {
     bool relaxed = false;
     RelaxResult lastRelax;
     std::optional<Wind> wind; ///< the wind the shape was last relaxed under (shapeWind())
+    double tolerance = 0;     ///< the tolerance it was last relaxed to (shapeTolerance())
     /// The system (law and shape) the last time the shape was relaxed: after an edit, relax()
     /// hands the fast path the tensions that shape had (physics/WarmStart.h), so that the parts
     /// the edit did not touch keep their equilibrium instead of going through a soft stage.
@@ -369,6 +370,7 @@ Document Document::load(const std::filesystem::path& file, std::vector<std::stri
     } else if (fits) {
         st.compiled.system.position = std::move(positions);
         st.wind = data.shape.wind;
+        st.tolerance = data.shape.tolerance.value_or(0.0);
         st.warm = data.shape.warm;
         st.relaxed = data.shape.relaxed;
         if (st.relaxed) st.relaxedSystem = st.compiled.system;
@@ -408,9 +410,11 @@ void Document::saveSnapshot(const std::filesystem::path& path) const {
     const MassSpringSystem& system = st.compiled.system;
     const std::optional<double> saved =
         st.relaxed ? std::optional(residual(system, st.wind)) : std::nullopt;
-    writeFileDurably(path, encodeSnapshot(st.current(), st.compacted(),
-                                          {system.origin, system.position, st.wind, st.warm,
-                                           st.relaxed, saved}));
+    writeFileDurably(
+        path, encodeSnapshot(
+                  st.current(), st.compacted(),
+                  {system.origin, system.position, st.wind, st.warm, st.relaxed, saved,
+                   st.relaxed && st.tolerance > 0 ? std::optional(st.tolerance) : std::nullopt}));
 }
 
 CommandResult Document::execute(const Command& command, bool merge) {
@@ -447,6 +451,9 @@ const CompiledSculpture& Document::compiled() const { return state_->compiled; }
 CompiledSculpture& Document::compiled() { return state_->compiled; }
 const RelaxResult& Document::lastRelax() const { return state_->lastRelax; }
 const std::optional<Wind>& Document::shapeWind() const { return state_->wind; }
+double Document::shapeTolerance() const {
+    return state_->tolerance;
+}
 bool Document::isRelaxed() const { return state_->relaxed; }
 
 void Document::adoptPositions(std::vector<Vec3> positions, bool converged) {
@@ -457,6 +464,7 @@ void Document::adoptPositions(std::vector<Vec3> positions, bool converged) {
                         std::to_string(st.compiled.system.knotCount()) + " knots");
     st.compiled.system.position = std::move(positions);
     st.wind.reset(); // the studio relaxes under gravity alone
+    st.tolerance = 0; // ... to a tolerance of its own
     st.relaxed = converged;
     st.warm = true;
     if (converged) st.relaxedSystem = st.compiled.system;
@@ -494,6 +502,7 @@ RelaxResult Document::relax(const DocumentRelaxOptions& options) {
         result.unsettledAt = system.refs[system.refStart[static_cast<std::size_t>(worst)]];
     st.lastRelax = result;
     st.wind = options.solver.wind;
+    st.tolerance = options.solver.tolerance;
     st.relaxed = result.converged;
     st.warm = true;
     if (result.converged) st.relaxedSystem = system;

@@ -83,6 +83,9 @@ class Document {
     /// studio's relaxation); its load belongs in the shape's force balance (the report). Saved in
     /// snapshots.
     const std::optional<Wind>& shapeWind() const;
+    /// The tolerance the shape was last relaxed to, saved in snapshots (a relaxed one's); 0 when
+    /// unknown (none ran, a snapshot from before it was saved, after the studio's relaxation).
+    double shapeTolerance() const;
     /// Takes positions relaxed elsewhere (the studio's background relaxation) as the current
     /// shape, measured from compiled().system.origin as that system's are: the next edit
     /// warm-starts from them, as after relax(). `converged`: they are an

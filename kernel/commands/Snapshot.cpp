@@ -43,6 +43,8 @@ std::string encodeSnapshot(const Sculpture& model, const std::vector<JournalEntr
                                   {"pressure", codec::number(shape.wind->pressure, "wind")}};
     if (shape.residual)
         j["shape"]["residual"] = codec::number(*shape.residual, "the shape's residual");
+    if (shape.tolerance)
+        j["shape"]["tolerance"] = codec::number(*shape.tolerance, "the shape's tolerance");
     std::string text = std::string(kSnapshotMagic) + " " + std::to_string(kSnapshotFormat) + "\n";
     try {
         text += j.dump(-1, ' ', true);
@@ -95,6 +97,13 @@ SnapshotData decodeSnapshot(std::string_view text, const std::string& name) {
             out.shape.wind = wind;
         }
         if (sr.has("residual")) out.shape.residual = sr.real("residual");
+        if (sr.has("tolerance")) {
+            const double tolerance = sr.real("tolerance");
+            if (!(tolerance > 0 && tolerance <= kMaxTolerance))
+                throw UserError("the shape's tolerance must be > 0 and at most " +
+                                formatNumber(kMaxTolerance) + ", got " + formatNumber(tolerance));
+            out.shape.tolerance = tolerance;
+        }
         const Json& flat = sr.raw("positions");
         if (!flat.is_array() || flat.size() % 3 != 0)
             throw UserError("\"positions\" must be a flat array of x, y, z numbers");

@@ -1,17 +1,19 @@
 #pragma once
 // Internal to kernel/commands: the snapshot file (Document::saveSnapshot). Line 1 is the header
-// "netsculpt-snapshot 3"; line 2 one JSON object:
+// "netsculpt-snapshot 4"; line 2 one JSON object:
 //   {"hash": "<hashSculpture, 16 hex digits>", "model": {rails, pieces, seams, id counters,
 //    gravity}, "history": [the compacted journal entries that build the model],
 //    "shape": {"warm": bool, "relaxed": bool, "origin": [x, y, z],
 //              "positions": [x0, y0, z0, x1, ...],
 //              "wind": {"direction": [x, y, z], "pressure": q} (only when relaxed under one),
-//              "residual": r (only when relaxed)}}
+//              "residual": r (only when relaxed),
+//              "tolerance": t (only when relaxed: what it converged to)}}
 // The positions are measured from the origin (MassSpringSystem::origin), so that a shape relaxed
 // in site coordinates is saved to the last bit. Format 1 had no origin: its positions are the
 // sculpture's coordinates (origin (0, 0, 0)), and it is still read. Format 2 had no "residual";
 // format 3 added it (so that an older netsculpt says the file is newer rather than refusing the
-// key); both are still read.
+// key), format 4 "tolerance"; all are still read (a shape without a tolerance is reported
+// against the default one).
 // The history lets a loaded snapshot be undone, saved as a journal and turned into Lua; the
 // model and hash make the file self-describing and are checked against the history on load.
 
@@ -27,7 +29,7 @@
 
 namespace netsculpt {
 
-inline constexpr int kSnapshotFormat = 3;
+inline constexpr int kSnapshotFormat = 4;
 inline constexpr std::string_view kSnapshotMagic = "netsculpt-snapshot";
 
 /// Whether a file's text (or its first bytes) is a snapshot's rather than a journal's.
@@ -43,6 +45,9 @@ struct SnapshotShape {
     /// The relaxed shape's residual when it was saved: a loaded shape far above it was edited or
     /// damaged, and is not taken as relaxed. Absent in older files.
     std::optional<double> residual;
+    /// The tolerance the relaxed shape converged to (Document::shapeTolerance): what its force
+    /// balance is checked against. Absent in older files.
+    std::optional<double> tolerance;
 };
 
 struct SnapshotData {

@@ -14,7 +14,7 @@ RelaxStatus relaxStatus(const Document& doc) {
     status.relaxed = doc.isRelaxed();
     status.last = doc.lastRelax();
     status.wind = doc.shapeWind();
-    status.tolerance = status.last.tolerance > 0 ? status.last.tolerance : RelaxOptions{}.tolerance;
+    status.tolerance = doc.shapeTolerance() > 0 ? doc.shapeTolerance() : RelaxOptions{}.tolerance;
     return status;
 }
 

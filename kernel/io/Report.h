@@ -80,8 +80,8 @@ nlohmann::json buildReport(const Document& doc);
 /// The same for a sculpture and its compiled system at its current positions.
 nlohmann::json buildReport(const Sculpture& sculpture, const CompiledSculpture& compiled,
                            const RelaxStatus& status = {});
-/// What `doc` knows about its shape; tolerance = that of its last relaxation (RelaxOptions'
-/// default before any).
+/// What `doc` knows about its shape; tolerance = the one its shape was relaxed to
+/// (Document::shapeTolerance, kept in snapshots; RelaxOptions' default when unknown).
 RelaxStatus relaxStatus(const Document& doc);
 
 /// The Markdown summary that `netsculpt report` prints.

@@ -196,11 +196,14 @@ std::string attachmentsMarkdown(const json& r) {
 std::string reportMarkdown(const json& r) {
     std::string md = "# netsculpt report\n\n";
     const json& relax = r["relax"];
+    // The residual beside the tolerance it was relaxed to: what "relaxed" promises of the loads.
+    const std::string residual =
+        g6(r["residual"]) + " for the tolerance " + g6(r["force_balance"]["tolerance"]);
     if (r["relaxed"].get<bool>() && relax.is_null())
-        md += "Shape: **relaxed** (residual " + g6(r["residual"]) +
+        md += "Shape: **relaxed** (residual " + residual +
               "; relaxed before the file was saved).\n\n";
     else if (r["relaxed"].get<bool>())
-        md += "Shape: **relaxed** (residual " + g6(r["residual"]) + ", " +
+        md += "Shape: **relaxed** (residual " + residual + ", " +
               relax["backend"].get<std::string>() + ", " +
               std::to_string(relax["steps"].get<long long>()) + " steps, " + g6(relax["seconds"]) +
               " s).\n\n";

@@ -395,6 +395,31 @@ TEST_CASE("the report of an opened snapshot says it was relaxed, without inventi
     CHECK_THAT(text, !Contains("steps"));
 }
 
+TEST_CASE("the report of a snapshot relaxed to a loose tolerance checks its balance against it") {
+    Document doc;
+    addSoftRing(doc);
+    DocumentRelaxOptions options;
+    options.backend = "rk4"; // stops as soon as the residual is below the tolerance
+    options.solver.tolerance = 1e-2;
+    REQUIRE(doc.relax(options).converged);
+    const auto file = outputDir("snapshot") / "loose.nets";
+    doc.saveSnapshot(file);
+
+    const Document opened = Document::load(file);
+    CHECK(opened.shapeTolerance() == 1e-2);
+    const json r = buildReport(opened);
+    REQUIRE(r["relaxed"] == true);
+    REQUIRE(r["residual"].get<double>() > 1e-4); // far above the default tolerance, 1e-6
+    CHECK(r["residual"].get<double>() < 1e-2);
+    const json& fb = r["force_balance"];
+    CHECK(fb["tolerance"].get<double>() == 1e-2);
+    // The rails' sum is off the weight by at most the free knots' unbalanced forces.
+    CHECK(fb["relative_difference"].get<double>() <= r["residual"].get<double>());
+    CHECK(fb["within_tolerance"] == true);
+    CHECK_THAT(reportMarkdown(r), Contains("for the tolerance 0.01; relaxed before the file") &&
+                                      Contains("within the tolerance 0.01."));
+}
+
 TEST_CASE("a shape relaxed under wind: the report's residual and force balance carry its load, "
           "and its snapshot keeps it",
           "[wind]") {
