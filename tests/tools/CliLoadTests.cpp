@@ -90,3 +90,21 @@ TEST_CASE("relax, report and export keep the wind a snapshot's shape was relaxed
     std::ifstream in(json);
     checkWindBalance(nlohmann::json::parse(in)["report"]);
 }
+
+TEST_CASE("relax to a tolerance finer than the coordinates allow says so, not that the net is big",
+          "[cli]") {
+    // The windy tube is 2 m across: its knots cannot be placed closer to the equilibrium than a
+    // few 1e-8 of their weight at the rope's stiffness, whatever the tolerance asked.
+    const fs::path dir = freshFolder("cli-precision");
+    const fs::path script = dir / "windy.lua";
+    std::ofstream(script) << kWindyTube;
+    REQUIRE(runCli("run " + quoted(script) + " --out " + quoted(dir) + " -q").exitCode == 0);
+    const Ran ran = runCli("relax " + quoted(dir / "windy.nets") + " --tolerance 1e-30 --out " +
+                           quoted(dir / "fine"));
+    INFO(ran.output);
+    CHECK(ran.exitCode == 3);
+    CHECK_THAT(ran.output, Contains("stopped (precision limit)") &&
+                               Contains("which is above the tolerance 1e-30: relax with a "
+                                        "tolerance above the residual"));
+    CHECK_THAT(ran.output, !Contains("100 m"));
+}
