@@ -92,7 +92,8 @@ std::string reportMarkdown(const nlohmann::json& report);
 /// piece hangs from and where its last row is tied, "free" when nowhere, as the Markdown says).
 std::string reportPiecesCsv(const nlohmann::json& report);
 /// Per-attachment-point table as CSV (rail, piece, row, column, t, x, y, z: where the point is in
-/// the sculpture's coordinates, fx, fy, fz, magnitude).
+/// the sculpture's coordinates, m; fx, fy, fz: the reaction, N, the force the rail exerts on the
+/// net; magnitude, N; along, m).
 std::string reportAttachmentsCsv(const nlohmann::json& report);
 
 } // namespace netsculpt

@@ -162,7 +162,9 @@ std::string piecesMarkdown(const json& r) {
 std::string railsMarkdown(const json& r) {
     std::string md =
         "\n## Rails\n\nA reaction is the force the rail exerts on the net, in newtons along the "
-        "sculpture's axes (z up); the load on the rail is its opposite.\n\n"
+        "sculpture's axes (z up); the load on the rail is its opposite. The largest reaction is "
+        "that of one knot: pieces tied at the same rail points load each point with the sum of "
+        "their knots' reactions (Attachment points below).\n\n"
         "| id | name | length (m) | closed | attachments | reaction sum (N) | largest reaction "
         "(N) |\n|---|---|---|---|---|---|---|\n";
     for (const json& rail : r["rails"])
