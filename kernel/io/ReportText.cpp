@@ -213,6 +213,13 @@ std::string reportMarkdown(const json& r) {
         md += "Shape: **not relaxed** (residual " + g6(r["residual"]) +
               "); loads and tensions are those of the current, unbalanced shape.\n\n";
     md += "| quantity | value |\n|---|---|\n";
+    // Every load below is of this case: a wind's load is in the tensions and reactions too.
+    const json& wind = r.contains("wind") ? r["wind"] : json();
+    md += "| load case | " +
+          (wind.is_object() ? "weight and a wind of " + g6(wind["pressure"]) + " N/m towards " +
+                                  vecText(wind["direction"])
+                            : std::string("weight alone")) +
+          " |\n";
     md += "| knots | " + num(r["knots"]) + " |\n| bars | " + num(r["bars"]) + " |\n";
     md += "| rope length | " + g6(r["rope_length"]) + " m |\n";
     md += "| total mass | " + g6(r["total_mass"]) + " kg |\n| total weight | " +

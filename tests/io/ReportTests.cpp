@@ -391,6 +391,7 @@ TEST_CASE("the report of an opened snapshot says it was relaxed, without inventi
     CHECK(r["residual"].get<double>() < 1e-6);
     const std::string text = reportMarkdown(r);
     CHECK_THAT(text, Contains("Shape: **relaxed** (residual "));
+    CHECK_THAT(text, Contains("| load case | weight alone |"));
     CHECK_THAT(text, Contains("relaxed before the file was saved"));
     CHECK_THAT(text, !Contains("steps"));
 }
@@ -437,6 +438,9 @@ TEST_CASE("a shape relaxed under wind: the report's residual and force balance c
     CHECK(windX > 0.1 * r["total_weight"].get<double>());
     CHECK(fb["reaction_sum"]["x"].get<double>() == Approx(-windX).epsilon(1e-6));
     CHECK_THAT(reportMarkdown(r), Contains("against the weight and the wind (0.5 N/m towards"));
+    // The summary says which load case its tensions are of.
+    CHECK_THAT(reportMarkdown(r),
+               Contains("| load case | weight and a wind of 0.5 N/m towards (1, 0, 0) |"));
     // Judged under gravity alone, the same shape is out of balance by the wind's load.
     const json still = buildReport(doc.sculpture(), doc.compiled(),
                                    RelaxStatus{true, doc.lastRelax(), 1e-6, {}});
