@@ -164,6 +164,51 @@ json pieceReport(const Sculpture& s, const CompiledSculpture& c, const Piece& p,
             {"seams", seams}};
 }
 
+/// The load on a rail at one point: knots of pieces tied at the same place (two pieces on one
+/// ring at the same columns) load it with the sum of their reactions.
+struct PointLoad {
+    double magnitude = 0;         ///< the largest summed reaction at one point, N
+    std::size_t knots = 0;        ///< how many knots are tied at that point
+    std::size_t sharedPoints = 0; ///< points where more than one knot is tied
+};
+
+/// Knots closer than this are tied at one point of the rail.
+constexpr double kSamePoint = 1e-6; // m
+
+/// `held` in the order of t; on a closed rail the last points may be the first ones again.
+PointLoad largestPointLoad(const MassSpringSystem& sys, const std::vector<std::uint32_t>& held,
+                           const std::vector<Vec3>& reaction) {
+    std::vector<std::vector<std::uint32_t>> points;
+    for (std::uint32_t k : held) {
+        const bool same =
+            !points.empty() &&
+            (sys.position[points.back().front()] - sys.position[k]).norm() < kSamePoint;
+        if (same)
+            points.back().push_back(k);
+        else
+            points.push_back({k});
+    }
+    if (points.size() >= 2 &&
+        (sys.position[points.back().front()] - sys.position[points.front().front()]).norm() <
+            kSamePoint) {
+        points.front().insert(points.front().end(), points.back().begin(), points.back().end());
+        points.pop_back();
+    }
+    PointLoad out;
+    for (const auto& point : points) {
+        Vec3 sum;
+        for (std::uint32_t k : point)
+            sum += reaction[k];
+        if (point.size() > 1)
+            ++out.sharedPoints;
+        if (sum.norm() > out.magnitude) {
+            out.magnitude = sum.norm();
+            out.knots = point.size();
+        }
+    }
+    return out;
+}
+
 } // namespace
 
 std::size_t countOverstretchedBars(const MassSpringSystem& sys) {
@@ -277,17 +322,21 @@ nlohmann::json buildReport(const Sculpture& s, const CompiledSculpture& c,
                               {"magnitude", reaction[k].norm()}});
         }
         reactionSum += sum;
-        rails.push_back({{"id", id.value},
-                         {"name", rail.name},
-                         {"closed", rail.curve().closed()},
-                         {"length", rail.curve().length()},
-                         {"sampling", rail.curve().spec().sampling == Sampling::ArcLength
-                                          ? "arc length"
-                                          : "parameter"},
-                         {"attachments", held.size()},
-                         {"reaction", vec(sum)},
-                         {"max_reaction", largest},
-                         {"points", std::move(points)}});
+        const PointLoad point = largestPointLoad(sys, held, reaction);
+        rails.push_back(
+            {{"id", id.value},
+             {"name", rail.name},
+             {"closed", rail.curve().closed()},
+             {"length", rail.curve().length()},
+             {"sampling",
+              rail.curve().spec().sampling == Sampling::ArcLength ? "arc length" : "parameter"},
+             {"attachments", held.size()},
+             {"reaction", vec(sum)},
+             {"max_reaction", largest},
+             {"max_point_load", point.magnitude},
+             {"max_point_load_knots", point.knots},
+             {"shared_points", point.sharedPoints},
+             {"points", std::move(points)}});
     }
     // The rails carry the weight and the wind: 0 - 0 is +0, so no "-0" is printed.
     const Vec3 expected = Vec3{} - s.gravity * mass - windForce;

@@ -159,19 +159,30 @@ std::string piecesMarkdown(const json& r) {
     return md;
 }
 
+/// "0.789 (2 knots; 24 points shared)", or the one knot's reaction where no point is shared.
+std::string pointLoadText(const json& rail) {
+    const std::string load = g6(rail["max_point_load"]);
+    const std::size_t shared = rail["shared_points"].get<std::size_t>();
+    if (shared == 0)
+        return load;
+    return load + " (" + num(rail["max_point_load_knots"]) + " knots; " + std::to_string(shared) +
+           (shared == 1 ? " point" : " points") + " shared)";
+}
+
 std::string railsMarkdown(const json& r) {
     std::string md =
         "\n## Rails\n\nA reaction is the force the rail exerts on the net, in newtons along the "
         "sculpture's axes (z up); the load on the rail is its opposite. The largest reaction is "
-        "that of one knot: pieces tied at the same rail points load each point with the sum of "
-        "their knots' reactions (Attachment points below).\n\n"
+        "that of one knot; pieces tied at the same rail points load each point with the sum of "
+        "their knots' reactions, and the largest load at a point is the largest such sum "
+        "(Attachment points below list every knot).\n\n"
         "| id | name | length (m) | closed | attachments | reaction sum (N) | largest reaction "
-        "(N) |\n|---|---|---|---|---|---|---|\n";
+        "(N) | largest load at a point (N) |\n|---|---|---|---|---|---|---|---|\n";
     for (const json& rail : r["rails"])
         md += "| " + num(rail["id"]) + " | " + cell(rail["name"].get<std::string>()) + " | " +
               g6(rail["length"]) + " | " + (rail["closed"].get<bool>() ? "yes" : "no") + " | " +
               num(rail["attachments"]) + " | " + vecText(rail["reaction"]) + " | " +
-              g6(rail["max_reaction"]) + " |\n";
+              g6(rail["max_reaction"]) + " | " + pointLoadText(rail) + " |\n";
     return md;
 }
 

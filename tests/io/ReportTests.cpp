@@ -528,3 +528,50 @@ TEST_CASE("the report says how a child is knotted into its parent and every grad
     CHECK_THAT(gradedMd, Contains("\n| 12 | 0.2 | - |\n"));
     CHECK_THAT(gradedMd, !Contains("## Joins"));
 }
+
+TEST_CASE("the report sums the loads of pieces tied at the same rail points") {
+    // Two pieces of 10 columns on one ring of 10 points, tied at the same places: each point
+    // carries a knot of each, and the rail there the sum of their reactions.
+    Document doc;
+    const RailId rail = doc.execute(AddRailCommand{"ring", polygonRail(10, 0.8, 2.0)}).rails.at(0);
+    std::vector<PieceId> pieces;
+    for (int rows : {6, 3}) {
+        pieces.push_back(
+            doc.execute(AttachToRailCommand{{rail, 10, 0, rows, 0.3, 0, false}}).pieces.at(0));
+        doc.execute(SetMaterialCommand{pieces.back(), softRope()});
+    }
+    DocumentRelaxOptions options;
+    options.backend = "rk4";
+    REQUIRE(doc.relax(options).converged);
+    const json r = buildReport(doc);
+    const json& ring = r["rails"][0];
+    CHECK(ring["attachments"] == 20);
+    CHECK(ring["shared_points"] == 10);
+    CHECK(ring["max_point_load_knots"] == 2);
+
+    // By hand: each column's two top knots' reactions, summed.
+    const auto& c = doc.compiled();
+    const auto reactions = netsculpt::reactions(c.system);
+    double pointLoad = 0, knotLoad = 0;
+    for (int column = 0; column < 10; ++column) {
+        const Vec3 a = reactions[c.knotOf(pieces[0], 0, column)];
+        const Vec3 b = reactions[c.knotOf(pieces[1], 0, column)];
+        CHECK((c.system.position[c.knotOf(pieces[0], 0, column)] -
+               c.system.position[c.knotOf(pieces[1], 0, column)])
+                  .norm() < 1e-12);
+        pointLoad = std::max(pointLoad, (a + b).norm());
+        knotLoad = std::max({knotLoad, a.norm(), b.norm()});
+    }
+    CHECK(ring["max_point_load"].get<double>() == Approx(pointLoad).epsilon(1e-12));
+    CHECK(ring["max_reaction"].get<double>() == Approx(knotLoad).epsilon(1e-12));
+    CHECK(pointLoad > 1.2 * knotLoad); // the longer piece's knot alone is not the point's load
+    CHECK_THAT(reportMarkdown(r), Contains(" (2 knots; 10 points shared) |"));
+
+    // One piece alone: every point holds one knot, its load the knot's reaction.
+    doc.execute(RemovePieceCommand{pieces[1]});
+    REQUIRE(doc.relax(options).converged);
+    const json alone = buildReport(doc)["rails"][0];
+    CHECK(alone["shared_points"] == 0);
+    CHECK(alone["max_point_load_knots"] == 1);
+    CHECK(alone["max_point_load"].get<double>() == alone["max_reaction"].get<double>());
+}
