@@ -40,9 +40,10 @@
 //   max_reaction (the largest magnitude of one knot's reaction), max_point_load (the largest
 //   magnitude of the summed reactions of the knots tied at one point of the rail: pieces tied at
 //   the same places load each with their knots' sum), max_point_load_knots (how many knots are
-//   tied there), shared_points (the points where knots of more than one piece are tied), points[] {piece, row, column, t, along (the distance along
-//   the rail from its start, m: what a tape measures; t x length only under arc-length
-//   sampling), position, reaction, magnitude}.
+//   tied there), shared_points (the points where knots of more than one piece are tied),
+//   points[] {piece, row, column, t, along (the distance along the rail from its start, m: what
+//   a tape measures; t x length only under arc-length sampling), position, reaction,
+//   magnitude}.
 
 #include "commands/Document.h"
 
