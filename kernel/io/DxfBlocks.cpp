@@ -16,6 +16,12 @@ constexpr int kMaxNesting = 16;
 /// Counts of inserted points stop here (sums of capped counts cannot overflow).
 constexpr std::size_t kCountCap = std::size_t(1) << 60;
 
+/// What an INSERT places: points (a LINE 2, an ARC its samples, ...) and the block references
+/// nested in its block.
+struct Inserted {
+    std::size_t points = 0, references = 0;
+};
+
 /// How the entities of one content are placed.
 struct Placement {
     Affine toWorld;
@@ -35,25 +41,18 @@ class Placer {
     PlacedDrawing out;
 
     /// Refuses the first INSERT of model space past which the drawing's INSERTs place more than
-    /// kMaxInsertedPoints points.
+    /// kMaxInsertedPoints points or kMaxInsertedReferences block references.
     void checkBudget() {
-        std::size_t total = 0;
+        Inserted total;
         for (const DxfInsert& insert : drawing_.model.inserts) {
-            const std::size_t points = insertedPoints(insert);
-            total = std::min(total + points, kCountCap);
-            if (total <= kMaxInsertedPoints)
-                continue;
-            const std::string count = points >= kCountCap ? "more than " + std::to_string(kCountCap)
-                                                          : std::to_string(points);
-            throw UserError(file_ + ": " + insert.entity->describe() + ": places " + count +
-                            " points through block " + quoted(insert.block, 80) +
-                            " (the block references inside it included)" +
-                            (total > points ? ", " + std::to_string(total - points) +
-                                                  " more through the INSERTs before it"
-                                            : std::string()) +
-                            "; netsculpt places at most " + std::to_string(kMaxInsertedPoints) +
-                            " points through block references: insert fewer copies, or put "
-                            "the rails in a drawing of their own");
+            const Inserted placed = inserted(insert);
+            total.points = std::min(total.points + placed.points, kCountCap);
+            total.references = std::min(total.references + placed.references, kCountCap);
+            if (total.points > kMaxInsertedPoints)
+                overBudget(insert, placed.points, total.points, kMaxInsertedPoints, "points");
+            if (total.references > kMaxInsertedReferences)
+                overBudget(insert, placed.references, total.references, kMaxInsertedReferences,
+                           "block references");
         }
     }
 
@@ -85,32 +84,53 @@ class Placer {
   private:
     const std::string& file_;
     const DxfDrawing& drawing_;
-    std::map<const DxfContent*, std::size_t> points_; ///< points of a block, nested ones included
+    std::map<const DxfContent*, Inserted> placed_; ///< what a block places, nested ones included
     std::set<const DxfContent*> counting_;
 
-    /// The points an INSERT places, at most kCountCap. An undefined block, or one
-    /// inside itself, counts nothing here: placing it is refused.
-    std::size_t insertedPoints(const DxfInsert& insert) {
+    [[noreturn]] void overBudget(const DxfInsert& insert, std::size_t placed, std::size_t total,
+                                 std::size_t most, const std::string& what) const {
+        const std::string count =
+            placed >= kCountCap ? "more than " + std::to_string(kCountCap) : std::to_string(placed);
+        throw UserError(file_ + ": " + insert.entity->describe() + ": places " + count + " " +
+                        what + " through block " + quoted(insert.block, 80) +
+                        " (the block references inside it included)" +
+                        (total > placed ? ", " + std::to_string(total - placed) +
+                                              " more through the INSERTs before it"
+                                        : std::string()) +
+                        "; netsculpt places at most " + std::to_string(most) + " " + what +
+                        " through block references: insert fewer copies, or put the rails in a "
+                        "drawing of their own");
+    }
+
+    /// What an INSERT places, each count at most kCountCap. An undefined block, or one inside
+    /// itself, places nothing here: placing it is refused.
+    Inserted inserted(const DxfInsert& insert) {
         const auto found = drawing_.blocks.find(insert.block);
         if (found == drawing_.blocks.end())
-            return 0;
+            return {};
         const DxfContent* block = &found->second;
-        if (const auto known = points_.find(block); known != points_.end())
+        if (const auto known = placed_.find(block); known != placed_.end())
             return known->second;
         if (!counting_.insert(block).second)
-            return 0;
-        std::size_t n = block->refusals.size();
-        const auto add = [&](std::size_t more) { n = std::min(n + more, kCountCap); };
+            return {};
+        Inserted n{block->refusals.size(), 0};
+        const auto add = [](std::size_t& count, std::size_t more) {
+            count = std::min(count + more, kCountCap);
+        };
         for (const auto& curve : block->curves)
-            add(curve.second.points.size());
+            add(n.points, curve.second.points.size());
         for (const auto& part : block->parts)
-            add(part.second.size());
+            add(n.points, part.second.size());
         for (const DxfSpline& s : block->splines)
-            add(s.control.size());
-        for (const DxfInsert& inner : block->inserts)
-            add(insertedPoints(inner));
+            add(n.points, s.control.size());
+        for (const DxfInsert& inner : block->inserts) {
+            const Inserted more = inserted(inner);
+            add(n.points, more.points);
+            add(n.references, more.references);
+            add(n.references, 1);
+        }
         counting_.erase(block);
-        points_[block] = n;
+        placed_[block] = n;
         return n;
     }
 

@@ -30,6 +30,9 @@ Affine insertTransform(const DxfInsert& insert, const Vec3& base);
 /// placed through block references, nested ones included: a block inserted ten times in a block
 /// inserted ten times, six deep, makes a 2.5 KB file a million rails.
 inline constexpr std::size_t kMaxInsertedPoints = 1'000'000;
+/// At most this many block references are placed inside blocks: sixteen levels of blocks that
+/// each insert the next one ten times place no point but 10^16 references.
+inline constexpr std::size_t kMaxInsertedReferences = 1'000'000;
 
 /// Where an entity ends up.
 struct Placed {
@@ -55,8 +58,9 @@ struct PlacedDrawing {
 /// the INSERT and the block (and asking to explode it in the CAD program) for a block that is
 /// not defined, contains itself, is nested deeper than 16, an array (MINSERT) or inserted with
 /// a scale of 0; and naming the INSERT of model space, its block and the count when the
-/// drawing's INSERTs would place more than kMaxInsertedPoints points (counted before anything
-/// is placed). Entities that cannot be rails are placed into `refusals`, not refused here.
+/// drawing's INSERTs would place more than kMaxInsertedPoints points or kMaxInsertedReferences
+/// block references (counted before anything is placed). Entities that cannot be rails are
+/// placed into `refusals`, not refused here.
 PlacedDrawing placeDrawing(const std::string& file, const DxfDrawing& drawing);
 
 } // namespace netsculpt::io

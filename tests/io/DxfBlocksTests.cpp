@@ -184,6 +184,39 @@ TEST_CASE("DXF INSERT: copies multiplied through nested blocks are counted befor
                           Contains("1000000 more through the INSERTs before it"));
 }
 
+TEST_CASE("DXF INSERT: block references nested in blocks are counted before placing") {
+    // A fuzzed DXF: blocks that insert the next one ten times, sixteen deep, with no entity in
+    // the last, placed no point but 10^16 block references. Here B0 is empty and B1 to B6 each
+    // insert the block below ten times: the INSERT of B6 places 1,111,110 references.
+    std::string blocks = "0\nBLOCK\n8\n0\n2\nB0\n70\n0\n10\n0\n20\n0\n30\n0\n0\nENDBLK\n8\n0\n";
+    for (int level = 1; level <= 6; ++level) {
+        blocks += "0\nBLOCK\n8\n0\n2\nB" + std::to_string(level) + "\n70\n0\n10\n0\n20\n0\n30\n0\n";
+        for (int copy = 0; copy < 10; ++copy)
+            blocks +=
+                "0\nINSERT\n8\n0\n2\nB" + std::to_string(level - 1) + "\n10\n0\n20\n0\n30\n0\n";
+        blocks += "0\nENDBLK\n8\n0\n";
+    }
+    const auto dir = outputDir("dxf-insert-references");
+    ImportOptions metres;
+    metres.units = "m";
+    writeText(dir / "empty.dxf", withBlock(blocks, insert("B6")));
+    CHECK(io::kMaxInsertedReferences == 1'000'000);
+    CHECK_THROWS_WITH(importRailsFile(dir / "empty.dxf", metres),
+                      Contains("empty.dxf: INSERT A1 on layer I") &&
+                          Contains("places 1111110 block references through block 'B6'") &&
+                          Contains("at most 1000000 block references through block references"));
+    // B5 places 111,110 references: nine INSERTs of it stay within the budget, a tenth does not.
+    std::string nine;
+    for (int copy = 0; copy < 9; ++copy)
+        nine += "0\nINSERT\n5\nC" + std::to_string(copy) + "\n8\nI\n2\nB5\n10\n0\n20\n0\n30\n0\n";
+    const std::string line = "0\nLINE\n8\nR\n10\n0\n20\n0\n30\n0\n11\n1\n21\n0\n31\n0\n";
+    writeText(dir / "ten.dxf", withBlock(blocks, nine + insert("B5") + line));
+    CHECK_THROWS_WITH(importRailsFile(dir / "ten.dxf", metres),
+                      Contains("INSERT A1 on layer I") &&
+                          Contains("places 111110 block references through block 'B5'") &&
+                          Contains("999990 more through the INSERTs before it"));
+}
+
 TEST_CASE("DXF: an entity that cannot be a rail is refused only when its layer is read") {
     const auto dir = outputDir("dxf-unread-refusals");
     const std::string table = "0\nSECTION\n2\nTABLES\n0\nTABLE\n2\nLAYER\n"
