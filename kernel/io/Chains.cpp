@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <unordered_map>
 
 namespace netsculpt::io {
@@ -23,9 +24,15 @@ bool shorterThan(const ChainPart& part, double tolerance) {
     });
 }
 
+/// At most this many ends at different points share a cell of the end grid (a cube as wide as
+/// the join tolerance): the ends around one end are compared with it, so that crowding many
+/// tiny pieces into one spot took time growing with the square of their number.
+constexpr std::size_t kMaxEndsPerCell = 64;
+
 /// The parts' ends hashed into a grid of cubes `tolerance` wide, so that ends within the
 /// tolerance of one another lie in the same or in neighbouring cells: finding an end's partners
-/// looks at 27 cells, not at every end.
+/// looks at 27 cells, not at every end. Ends at the same point are entered once: the first of
+/// them stands for the others (same()).
 class EndGrid {
   public:
     EndGrid(const std::vector<ChainPart>& parts, double tolerance) : parts_(parts) {
@@ -36,8 +43,18 @@ class EndGrid {
         // Cells are indexed from the lowest end: at most 1e6 cells along each axis, as the
         // tolerance is 1e-6 of the extent (0 when every end is the same point: one cell).
         cell_ = tolerance > 0 ? tolerance : 1.0;
-        for (int node = 0; node < int(2 * parts.size()); ++node)
-            cells_[keyOf(cellOf(end(node)))].push_back(node);
+        std::map<std::array<double, 3>, int> firstAt;
+        for (int node = 0; node < int(2 * parts.size()); ++node) {
+            const Vec3& p = end(node);
+            const auto [first, fresh] = firstAt.emplace(std::array{p.x, p.y, p.z}, node);
+            same_.push_back(first->second);
+            if (!fresh)
+                continue;
+            std::vector<int>& cell = cells_[keyOf(cellOf(p))];
+            cell.push_back(node);
+            if (cell.size() > kMaxEndsPerCell && !crowded_)
+                crowded_ = &cell;
+        }
     }
 
     const Vec3& end(int node) const {
@@ -45,7 +62,13 @@ class EndGrid {
         return node % 2 == 0 ? pts.front() : pts.back();
     }
 
-    /// Calls `visit(other)` for every other end in the cells around `node`'s.
+    /// The first end at the point of `node`'s: the one entered into the grid.
+    int same(int node) const { return same_[std::size_t(node)]; }
+
+    /// The ends entered into a cell holding more than kMaxEndsPerCell, if there is one.
+    const std::vector<int>* crowded() const { return crowded_; }
+
+    /// Calls `visit(other)` for every other end entered in the cells around `node`'s.
     template <class Visit> void around(int node, Visit&& visit) const {
         const auto [cx, cy, cz] = cellOf(end(node));
         for (long long dx = -1; dx <= 1; ++dx)
@@ -66,6 +89,8 @@ class EndGrid {
     Vec3 lo_;
     double cell_ = 1;
     std::unordered_map<std::uint64_t, std::vector<int>> cells_;
+    std::vector<int> same_;
+    const std::vector<int>* crowded_ = nullptr; ///< values of an unordered_map stay in place
 
     Cell cellOf(const Vec3& p) const {
         return {(long long)std::floor((p.x - lo_.x) / cell_),
@@ -78,6 +103,24 @@ class EndGrid {
                std::uint64_t(c[2] + 1);
     }
 };
+
+/// UserError when the grid has a crowded cell: more ends at different points than
+/// kMaxEndsPerCell within one tolerance-wide cube, naming a few of their parts.
+void refuseCrowding(const std::string& file, const std::vector<ChainPart>& parts,
+                    const EndGrid& grid, double tolerance) {
+    const std::vector<int>* crowded = grid.crowded();
+    if (!crowded)
+        return;
+    std::string names;
+    for (std::size_t k = 0; k < 3; ++k)
+        names += parts[std::size_t((*crowded)[k] / 2)].where + ", ";
+    throw UserError(file + ": more than " + std::to_string(kMaxEndsPerCell) +
+                    " ends of pieces at different points lie within " + numberText(tolerance) +
+                    " of one another near " + pointText(grid.end(crowded->front())) + " (" + names +
+                    "...); netsculpt joins at most " + std::to_string(kMaxEndsPerCell) +
+                    " there: remove the pieces shorter than " + numberText(tolerance) +
+                    " (1e-6 of the drawing's extent) in the drawing program");
+}
 
 /// Ends are nodes 2 * part + (0 = start, 1 = end). Ends within `tolerance` of one another meet,
 /// and so do the two ends of a dropped part (one shorter than the tolerance): the ends that meet
@@ -114,20 +157,22 @@ std::vector<int> partnersOf(const std::string& file, const std::vector<ChainPart
         if (dropped[part])
             unite(int(2 * part), int(2 * part + 1));
     const EndGrid grid(parts, tolerance);
+    refuseCrowding(file, parts, grid, tolerance);
     for (int a = 0; a < nodes; ++a) {
-        grid.around(a, [&](int b) {
-            if (distance(grid.end(a), grid.end(b)) <= tolerance)
-                unite(a, b);
-        });
+        if (grid.same(a) != a)
+            unite(grid.same(a), a);
+        else
+            grid.around(a, [&](int b) {
+                if (distance(grid.end(a), grid.end(b)) <= tolerance)
+                    unite(a, b);
+            });
         const int at = find(a);
         if (kept[std::size_t(at)] < 3)
             continue;
-        std::vector<int> meeting;
-        if (!dropped[std::size_t(a / 2)])
-            meeting.push_back(a / 2);
+        std::vector<int> meeting; // in file order
         for (int b = 0; b < nodes; ++b)
             if (!dropped[std::size_t(b / 2)] && find(b) == at &&
-                std::find(meeting.begin(), meeting.end(), b / 2) == meeting.end())
+                (meeting.empty() || meeting.back() != b / 2))
                 meeting.push_back(b / 2);
         std::string names;
         for (int part : meeting)

@@ -222,6 +222,29 @@ TEST_CASE("OBJ: a piece shorter than the join tolerance is contracted, not a gap
     CHECK(rails[0].curve.points == std::vector<Vec3>{{0, 0, 0}, {10, 0, 0}, {20, 0, 0}});
 }
 
+TEST_CASE("OBJ: many pieces shorter than the join tolerance crowded into one spot") {
+    // A fuzzed OBJ of thousands of zero-length edges at one vertex took time growing with the
+    // square of their number (each end was compared with every other). Edges at the same points
+    // are compared once: 2,000 of them at the first vertex leave the one rail as it is.
+    std::string repeated = "v 0 0 0\nv 1 0 0\nl 1 2\n";
+    for (int k = 0; k < 2000; ++k)
+        repeated += "l 1 1\n";
+    const auto rails = importText("repeated.obj", repeated);
+    REQUIRE(rails.size() == 1);
+    CHECK(rails[0].curve.points == std::vector<Vec3>{{0, 0, 0}, {1, 0, 0}});
+    // Extent 1: tolerance 1e-6. 40 edges 1e-9 long, each at its own points, put 80 different
+    // ends into one cube 1e-6 wide: more than the 64 that are joined there.
+    std::string crowded = "v 0 0 0\nv 1 0 0\nl 1 2\n";
+    for (int k = 0; k < 80; ++k)
+        crowded += "v " + std::to_string(k) + "e-9 0 0\n";
+    for (int k = 0; k < 40; ++k)
+        crowded += "l " + std::to_string(2 * k + 3) + " " + std::to_string(2 * k + 4) + "\n";
+    CHECK_THROWS_WITH(importText("crowded.obj", crowded),
+                      Contains("crowded.obj: more than 64 ends of pieces at different points lie "
+                               "within 1e-06 of one another near (0, 0, 0) (line ") &&
+                          Contains("remove the pieces shorter than 1e-06"));
+}
+
 TEST_CASE("a coordinate that is not a number is called so, not too large") {
     const std::vector<Vec3> points{{0, 0, 0}, {std::nan(""), 1, 2}};
     CHECK_THROWS_WITH(io::checkCoordinates("rails.dxf", "LINE 2F on layer R (line 9)", points, 1),
