@@ -118,6 +118,17 @@ TEST_CASE("Ctrl-C stops a script between instructions, and its journal keeps wha
     CHECK_THAT(replay.output, Contains("1 rail, 1 piece, 480 knots"));
 }
 
+TEST_CASE("With --quiet, Ctrl-C is not acknowledged, only its error said", "[cli]") {
+    const fs::path dir = freshFolder("cli-interrupt-quiet");
+    const fs::path script = writeScript(dir, "loop.lua", tubeScript("while true do end\n"));
+    const pid_t pid =
+        spawnCli({"-q", "run", script.string(), "--out", dir.string()}, dir / "run.txt");
+    CHECK(interruptWhenCaught(pid) == 130);
+    const std::string output = readFile(dir / "run.txt");
+    CHECK_THAT(output, Contains("loop.lua:6: script interrupted (Ctrl-C)"));
+    CHECK_THAT(output, !Contains("Ctrl-C again"));
+}
+
 TEST_CASE("Ctrl-C stops a script's relax, and pcall does not catch it", "[cli]") {
     const fs::path dir = freshFolder("cli-interrupt-script-relax");
     const fs::path script =

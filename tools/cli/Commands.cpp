@@ -146,7 +146,7 @@ int runScript(const RunArgs& a, Verbosity verbosity) {
             a.script.string().c_str());
     ProgressLine progress(verbosity);
     lua::ScriptOptions options = scriptOptions(a, out, progress);
-    const InterruptRequest interrupt;
+    const InterruptRequest interrupt(verbosity == Verbosity::Quiet);
     options.interrupt = interrupt.flag();
     const auto start = std::chrono::steady_clock::now();
     const Watchdog watchdog(a.maxSeconds, a.script.string() + " ran past its time limit of " +
@@ -227,7 +227,8 @@ int relaxDocument(const RelaxArgs& a, Verbosity verbosity) {
     ProgressLine progress(verbosity);
     if (progress.enabled())
         options.solver.progress = [&progress](const RelaxProgress& p) { progress.update(p); };
-    const InterruptRequest interrupt; // Ctrl-C stops the relaxation; its shape is saved
+    // Ctrl-C stops the relaxation; its shape is saved.
+    const InterruptRequest interrupt(verbosity == Verbosity::Quiet);
     options.solver.cancel = interrupt.flag();
     const RelaxResult result = doc.relax(options);
     progress.clear(); // the result is this command's output, below: not also a message
@@ -264,7 +265,7 @@ int relaxUnlessRelaxed(Document& doc, const fs::path& document, bool relaxFirst,
     ProgressLine progress(verbosity);
     if (progress.enabled())
         options.solver.progress = [&progress](const RelaxProgress& p) { progress.update(p); };
-    const InterruptRequest interrupt;
+    const InterruptRequest interrupt(verbosity == Verbosity::Quiet);
     options.solver.cancel = interrupt.flag();
     const RelaxResult result = doc.relax(options);
     progress.clear(); // said once, below

@@ -8,6 +8,7 @@ namespace netsculpt::cli {
 namespace {
 
 std::atomic<bool> interrupted{false};
+std::atomic<bool> acknowledge{true};
 static_assert(std::atomic<bool>::is_always_lock_free, "read and written in a signal handler");
 struct sigaction before {};
 
@@ -15,13 +16,16 @@ void onInterrupt(int) {
     interrupted.store(true);
     static constexpr char kMessage[] =
         "\nnetsculpt: Ctrl-C: stopping (Ctrl-C again to quit at once)\n";
+    if (!acknowledge.load())
+        return;
     [[maybe_unused]] const ssize_t written = write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
 }
 
 } // namespace
 
-InterruptRequest::InterruptRequest() {
+InterruptRequest::InterruptRequest(bool quiet) {
     interrupted.store(false);
+    acknowledge.store(!quiet);
     sigaction(SIGINT, nullptr, &before);
     if (before.sa_handler == SIG_IGN) // started in the background: Ctrl-C is not for it
         return;

@@ -22,7 +22,8 @@ class Interrupted : public std::runtime_error {
 
 class InterruptRequest {
   public:
-    InterruptRequest();  ///< catches SIGINT; one at a time
+    /// Catches SIGINT; one at a time. `quiet`: no line on stderr acknowledges the first Ctrl-C.
+    explicit InterruptRequest(bool quiet = false);
     ~InterruptRequest(); ///< gives SIGINT back its action from before
     InterruptRequest(const InterruptRequest&) = delete;
     InterruptRequest& operator=(const InterruptRequest&) = delete;
