@@ -37,6 +37,23 @@ std::string insert(const std::string& block, const std::string& more = "") {
     return "0\nINSERT\n5\nA1\n8\nI\n2\n" + block + "\n10\n0\n20\n0\n30\n0\n" + more;
 }
 
+/// Blocks B0 (holding `bottom`'s entities) to B6, each of B1 to B6 inserting the block below
+/// ten times, side by side along x.
+std::string tenfoldBlocks(const std::string& bottom) {
+    const auto header = [](int level) {
+        return "0\nBLOCK\n8\n0\n2\nB" + std::to_string(level) + "\n70\n0\n10\n0\n20\n0\n30\n0\n";
+    };
+    std::string blocks = header(0) + bottom + "0\nENDBLK\n8\n0\n";
+    for (int level = 1; level <= 6; ++level) {
+        blocks += header(level);
+        for (int copy = 0; copy < 10; ++copy)
+            blocks += "0\nINSERT\n8\n0\n2\nB" + std::to_string(level - 1) + "\n10\n" +
+                      std::to_string(copy) + "\n20\n0\n30\n0\n";
+        blocks += "0\nENDBLK\n8\n0\n";
+    }
+    return blocks;
+}
+
 } // namespace
 
 TEST_CASE("DXF INSERT: a block's rails are placed by scale, rotation, base point and extrusion") {
@@ -154,16 +171,8 @@ TEST_CASE("DXF layers: frozen, off and Defpoints are not read; layers = {...} ch
 TEST_CASE("DXF INSERT: copies multiplied through nested blocks are counted before placing") {
     // B0 holds one LINE (2 points); B1 to B6 each insert the block below ten times, so the
     // INSERT of B6 would place 10^6 LINEs: 2,000,000 points, twice the budget.
-    std::string blocks =
-        "0\nBLOCK\n8\n0\n2\nB0\n70\n0\n10\n0\n20\n0\n30\n0\n"
-        "0\nLINE\n8\n0\n10\n0\n20\n0\n30\n0\n11\n1\n21\n0\n31\n0\n0\nENDBLK\n8\n0\n";
-    for (int level = 1; level <= 6; ++level) {
-        blocks += "0\nBLOCK\n8\n0\n2\nB" + std::to_string(level) + "\n70\n0\n10\n0\n20\n0\n30\n0\n";
-        for (int copy = 0; copy < 10; ++copy)
-            blocks += "0\nINSERT\n8\n0\n2\nB" + std::to_string(level - 1) + "\n10\n" +
-                      std::to_string(copy) + "\n20\n0\n30\n0\n";
-        blocks += "0\nENDBLK\n8\n0\n";
-    }
+    const std::string blocks =
+        tenfoldBlocks("0\nLINE\n8\n0\n10\n0\n20\n0\n30\n0\n11\n1\n21\n0\n31\n0\n");
     const auto dir = outputDir("dxf-insert-budget");
     ImportOptions metres;
     metres.units = "m";
@@ -188,14 +197,7 @@ TEST_CASE("DXF INSERT: block references nested in blocks are counted before plac
     // A fuzzed DXF: blocks that insert the next one ten times, sixteen deep, with no entity in
     // the last, placed no point but 10^16 block references. Here B0 is empty and B1 to B6 each
     // insert the block below ten times: the INSERT of B6 places 1,111,110 references.
-    std::string blocks = "0\nBLOCK\n8\n0\n2\nB0\n70\n0\n10\n0\n20\n0\n30\n0\n0\nENDBLK\n8\n0\n";
-    for (int level = 1; level <= 6; ++level) {
-        blocks += "0\nBLOCK\n8\n0\n2\nB" + std::to_string(level) + "\n70\n0\n10\n0\n20\n0\n30\n0\n";
-        for (int copy = 0; copy < 10; ++copy)
-            blocks +=
-                "0\nINSERT\n8\n0\n2\nB" + std::to_string(level - 1) + "\n10\n0\n20\n0\n30\n0\n";
-        blocks += "0\nENDBLK\n8\n0\n";
-    }
+    const std::string blocks = tenfoldBlocks("");
     const auto dir = outputDir("dxf-insert-references");
     ImportOptions metres;
     metres.units = "m";
