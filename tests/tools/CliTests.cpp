@@ -485,6 +485,29 @@ TEST_CASE("a folder, a device, an empty or cut-off file as a design or script is
     CHECK_FALSE(fs::exists(dir / "k.csv"));
 }
 
+TEST_CASE("With --quiet, a torn last entry dropped is still warned of", "[cli]") {
+    const fs::path dir = freshFolder("cli-quiet-torn");
+    const fs::path script = writeScript(dir, "small.lua", kSmallSculpture);
+    REQUIRE(runCli("run " + quoted(script) + " --out " + quoted(dir) + " -q").exitCode == 0);
+    std::string text = readFile(dir / "small.netj");
+    REQUIRE(text.size() > 20);
+    text.resize(text.size() - 10); // the last entry cut off in the middle, as by a crash
+    std::ofstream(dir / "torn.netj", std::ios::binary) << text;
+    for (const char* name : {"replay", "to-lua", "report", "relax", "export"}) {
+        const std::string command = name;
+        std::string arguments = command + " -q " + quoted(dir / "torn.netj");
+        if (command == "relax")
+            arguments += " --out " + quoted(dir / "relaxed");
+        if (command == "export")
+            arguments += " " + quoted(dir / "k.csv");
+        INFO(arguments);
+        const Ran ran = runCli(arguments);
+        CHECK(ran.exitCode == 0);
+        CHECK_THAT(ran.output,
+                   Contains("netsculpt: warning: ") && Contains("dropped a torn last entry"));
+    }
+}
+
 TEST_CASE("relax warns when the relaxed net stretches bars beyond what rope can do", "[cli]") {
     // Three rows of 0.25 m bars tied between rails 2.8 m apart: only a 50 % stretch reaches.
     const fs::path dir = freshFolder("cli-overstretch");

@@ -32,12 +32,13 @@ void createFolder(const fs::path& folder) {
                         (error ? ": " + error.message() : std::string()));
 }
 
-Document openDocument(const fs::path& path, Verbosity verbosity) {
+/// Opens a design, saying what it dropped (a torn last entry) even with --quiet, which keeps
+/// errors and warnings: that entry is gone from every output of this command.
+Document openDocument(const fs::path& path) {
     std::vector<std::string> warnings;
     Document doc = lua::openReadOnly(path, &warnings);
-    if (verbosity != Verbosity::Quiet)
-        for (const std::string& w : warnings)
-            std::cerr << "netsculpt: warning: " << w << "\n";
+    for (const std::string& w : warnings)
+        std::cerr << "netsculpt: warning: " << w << "\n";
     return doc;
 }
 
@@ -194,7 +195,7 @@ void checkNotInput(const fs::path& output, const fs::path& input, const char* co
 int replayJournal(const fs::path& journal, const fs::path& out, Verbosity verbosity) {
     if (!out.empty())
         checkNotInput(out / (journal.stem().string() + ".netj"), journal, "replay");
-    Document doc = openDocument(journal, verbosity);
+    Document doc = openDocument(journal);
     std::cout << journal.string() << ": " << summary(doc) << "; hash " << hashText(doc.hash())
               << "\n";
     if (!out.empty()) {
@@ -208,7 +209,7 @@ int replayJournal(const fs::path& journal, const fs::path& out, Verbosity verbos
 }
 
 int journalToLua(const fs::path& journal) {
-    const Document doc = openDocument(journal, Verbosity::Normal);
+    const Document doc = openDocument(journal);
     std::cout << doc.toLua();
     return 0;
 }
@@ -216,7 +217,7 @@ int journalToLua(const fs::path& journal) {
 int relaxDocument(const RelaxArgs& a, Verbosity verbosity) {
     const fs::path snapshot = a.out / (a.document.stem().string() + ".nets");
     checkNotInput(snapshot, a.document, "relax");
-    Document doc = openDocument(a.document, verbosity);
+    Document doc = openDocument(a.document);
     createFolder(a.out);
     DocumentRelaxOptions options;
     options.backend = a.backend;
@@ -287,7 +288,7 @@ namespace {
 int exportRails(const ExportArgs& a, Verbosity verbosity) {
     for (const fs::path& file : a.files)
         checkRailsExport(file);
-    const Document doc = openDocument(a.document, verbosity);
+    const Document doc = openDocument(a.document);
     for (const fs::path& file : a.files) {
         if (file.has_parent_path())
             createFolder(file.parent_path());
@@ -311,7 +312,7 @@ int exportDocument(const ExportArgs& a, Verbosity verbosity) {
     options.view = a.view;
     for (const fs::path& file : a.files)
         checkExport(file, options); // before a relaxation that may take a while
-    Document doc = openDocument(a.document, verbosity);
+    Document doc = openDocument(a.document);
     const int exitCode = relaxUnlessRelaxed(doc, a.document, a.relaxFirst, "export", verbosity);
     for (const fs::path& file : a.files) {
         if (file.has_parent_path())
@@ -324,7 +325,7 @@ int exportDocument(const ExportArgs& a, Verbosity verbosity) {
 }
 
 int reportDocument(const ReportArgs& a, Verbosity verbosity) {
-    Document doc = openDocument(a.document, verbosity);
+    Document doc = openDocument(a.document);
     const int exitCode =
         relaxUnlessRelaxed(doc, a.document, a.relaxFirst, "the report", verbosity);
     const nlohmann::json report = buildReport(doc);

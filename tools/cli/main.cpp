@@ -268,8 +268,8 @@ int main(int argc, char** argv) {
     Options o;
     app.set_version_flag("--version", "netsculpt " NETSCULPT_VERSION);
     app.add_flag("--quiet,-q", o.quiet,
-                 "No progress line or messages, only errors (a command's result on stdout, such "
-                 "as relax's result line, still prints)");
+                 "No progress line or notes, only errors and warnings (a command's result on "
+                 "stdout, such as relax's result line, still prints)");
     app.add_flag("--verbose,-v", o.verbose, "More messages (relaxation summaries, Lua tracebacks)");
     app.require_subcommand(1);
     app.fallthrough();
