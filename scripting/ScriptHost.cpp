@@ -57,6 +57,26 @@ int callScript(lua_State* L, const std::vector<std::string>& args) {
     return lua_pcall(L, int(args.size()), 0, 1);
 }
 
+/// Without the sandbox `require` still looks first where a sandboxed script's does (its folder,
+/// the output folder, the --lib folders), so that --unsafe loses no module a script found
+/// before. A folder whose name holds ';' or '?' cannot be written into package.path: left out.
+void prependModuleFolders(lua_State* L, const ScriptContext& ctx) {
+    std::string path;
+    for (const fs::path& folder : readableFolders(ctx)) {
+        const std::string name = folder.string();
+        if (name.find_first_of(";?") == std::string::npos)
+            path += (folder / "?.lua").string() + ";" + (folder / "?" / "init.lua").string() + ";";
+    }
+    lua_getglobal(L, "package");
+    lua_getfield(L, -1, "path");
+    if (const char* current = lua_tostring(L, -1))
+        path += current;
+    lua_pop(L, 1);
+    lua_pushlstring(L, path.data(), path.size());
+    lua_setfield(L, -2, "path");
+    lua_pop(L, 1);
+}
+
 /// Opens the libraries and netsculpt, the sandbox and the limits (with no memory limit yet).
 void prepareState(lua_State* L, ScriptContext& ctx, const std::string& script,
                   const ScriptOptions& options) {
@@ -69,6 +89,8 @@ void prepareState(lua_State* L, ScriptContext& ctx, const std::string& script,
     lua_pop(L, 2);
     if (ctx.sandboxed)
         installSandbox(L);
+    else
+        prependModuleFolders(L, ctx);
     installLimits(L, ctx);
     setScriptArguments(L, script, options.args);
 }

@@ -168,3 +168,23 @@ TEST_CASE("The unsafe option lifts the sandbox", "[sandbox]") {
     CHECK(fs::is_regular_file(file));
     CHECK(fs::is_regular_file(f.root / "abs.netj"));
 }
+
+TEST_CASE("Lifted, the sandbox's module folders stay where require looks", "[sandbox]") {
+    // --unsafe once left only package.path's own places: a module beside the script, or in a
+    // --lib folder, loaded in the sandbox and was not found with the sandbox lifted.
+    const ScriptFolders f("unsafe-modules");
+    const fs::path shared = f.root / "studio-lib";
+    f.write(f.scripts / "beside.lua", "return {name = 'beside'}\n");
+    f.write(shared / "studio" / "rails.lua", "return {name = 'crown'}\n");
+    const std::string code = "assert(require('beside').name == 'beside')\n"
+                             "assert(require('studio.rails').name == 'crown')\n";
+    for (const bool unsafe : {false, true}) {
+        INFO("unsafe: " << unsafe);
+        lua::ScriptOptions options = f.options();
+        options.libraryDirs = {shared};
+        options.unsafe = unsafe;
+        const auto r = f.run(code, options);
+        CHECK(r.error == "");
+        CHECK(r.ok);
+    }
+}
