@@ -19,6 +19,16 @@ int parseInt(const std::string& text, const std::string& option, int lo, int hi)
     return value;
 }
 
+/// A number of seconds, fractions allowed ("0.5").
+double parseSeconds(const std::string& text, const std::string& option, double lo, double hi) {
+    double value = 0;
+    const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (ec != std::errc() || ptr != text.data() + text.size() || !(value >= lo && value <= hi))
+        throw UserError(option + " expects a number of seconds from " + std::to_string(int(lo)) +
+                        " to " + std::to_string(int(hi)) + ", got \"" + text + "\"");
+    return value;
+}
+
 } // namespace
 
 std::string studioUsage() {
@@ -56,7 +66,7 @@ StudioOptions parseStudioOptions(const std::vector<std::string>& args) {
         else if (a == "--no-relax") o.relax = false;
         else if (a == "--no-vsync") o.vsync = false;
         else if (a == "--samples") o.samples = parseInt(value(), a, 0, 16);
-        else if (a == "--settle") o.settleSeconds = parseInt(value(), a, 0, 3600);
+        else if (a == "--settle") o.settleSeconds = parseSeconds(value(), a, 0, 3600);
         else if (a == "--colour" || a == "--color") {
             o.colourBy = value();
             if (o.colourBy != "piece" && o.colourBy != "tension")
@@ -73,7 +83,8 @@ StudioOptions parseStudioOptions(const std::vector<std::string>& args) {
             o.width = parseInt(v.substr(0, x), "--size width", 64, 16384);
             o.height = parseInt(v.substr(x + 1), "--size height", 64, 16384);
         } else if (a == "--help" || a == "-h") {
-            throw UserError(studioUsage());
+            o.help = true;
+            return o;
         } else {
             throw UserError("unknown argument \"" + a + "\"\n" + studioUsage());
         }

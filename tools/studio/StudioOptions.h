@@ -24,13 +24,15 @@ struct StudioOptions {
     bool vsync = true;                               ///< --no-vsync (implied by --play)
     std::optional<std::string> printHandles;         ///< --print-handles MODE: pixel positions after frame 1
     std::string colourBy = "piece";                  ///< --colour piece|tension
+    bool help = false;                               ///< --help, -h: print the usage, start nothing
 };
 
 /// The session journal when --journal is not given: $XDG_DATA_HOME/netsculpt/session.netj, or
 /// ~/.local/share/netsculpt/session.netj.
 std::filesystem::path defaultSessionJournal();
 
-/// Parses argv. Throws UserError naming the bad argument and the usage.
+/// Parses argv. Throws UserError naming the bad argument and the usage. --help stops the parse:
+/// `help` set, nothing after it read.
 StudioOptions parseStudioOptions(const std::vector<std::string>& args);
 std::string studioUsage();
 

@@ -19,6 +19,10 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "%s\n", e.what());
         return 2;
     }
+    if (options.help) {
+        std::fputs(studio::studioUsage().c_str(), stdout);
+        return 0;
+    }
     try {
         studio::App app(options);
         return app.run();

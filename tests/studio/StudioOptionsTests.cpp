@@ -1,0 +1,28 @@
+// netsculpt-studio's command line (docs/studio.md "Command line"), parsed without a window.
+
+#include "StudioOptions.h"
+
+#include "model/Error.h"
+
+#include <catch2/catch.hpp>
+
+using Catch::Matchers::Contains;
+using netsculpt::UserError;
+using netsculpt::studio::parseStudioOptions;
+
+TEST_CASE("studio options: --help asks for the usage, not an error", "[studio]") {
+    // It was thrown as the error of a bad argument: the usage on stderr, exit status 2.
+    CHECK(parseStudioOptions({"--help"}).help);
+    CHECK(parseStudioOptions({"-h"}).help);
+    CHECK(parseStudioOptions({"--demo", "--help"}).help);
+    CHECK_FALSE(parseStudioOptions({"--demo"}).help);
+}
+
+TEST_CASE("studio options: --settle takes seconds with fractions", "[studio]") {
+    CHECK(parseStudioOptions({"--settle", "0.5"}).settleSeconds == 0.5);
+    CHECK(parseStudioOptions({"--settle", "60"}).settleSeconds == 60);
+    CHECK_THROWS_WITH(parseStudioOptions({"--settle", "-1"}),
+                      Contains("--settle expects a number of seconds from 0 to 3600, got \"-1\""));
+    CHECK_THROWS_WITH(parseStudioOptions({"--settle", "soon"}), Contains("got \"soon\""));
+    CHECK_THROWS_AS(parseStudioOptions({"--settle", "1e9"}), UserError);
+}
