@@ -271,21 +271,32 @@ class Builder {
 
     /// When a knot hangs from the last rows of two pieces side by side (a child below split
     /// parts): "; it hangs from piece 1 row 39 (at z = 4.1 m) and piece 3 row 29 (at z = 6.3
-    /// m): ..." - the cause when those rows end at different heights. Empty otherwise.
+    /// m): ..." - the cause when those rows end at different heights. Empty otherwise, also
+    /// when one piece's last row holds both knots (a sibling below the same parent, whose
+    /// row 0 shares them, is not a piece side by side).
     std::string acrossPiecesText(std::uint32_t a, std::uint32_t b, PieceId below) const {
         const MassSpringSystem& sys = out_.system;
-        const KnotRef& ra = sys.refs[sys.refStart[a]];
-        const KnotRef* rb = &sys.refs[sys.refStart[b]];
-        for (std::uint32_t i = sys.refStart[b]; i < sys.refStart[b + 1]; ++i)
-            if (sys.refs[i].piece != ra.piece && sys.refs[i].piece != below)
-                rb = &sys.refs[i]; // a seam knot: named in the other piece
-        if (rb->piece == ra.piece)
+        const auto inLastRows = [&](std::uint32_t k) { // k in pieces other than `below`
+            std::vector<KnotRef> refs;
+            for (std::uint32_t i = sys.refStart[k]; i < sys.refStart[k + 1]; ++i) {
+                const KnotRef& r = sys.refs[i];
+                if (r.piece != below && r.row == s_.pieces.at(r.piece).rows - 1)
+                    refs.push_back(r);
+            }
+            return refs;
+        };
+        const std::vector<KnotRef> ra = inLastRows(a), rb = inLastRows(b);
+        if (ra.empty() || rb.empty())
             return "";
+        for (const KnotRef& x : ra)
+            for (const KnotRef& y : rb)
+                if (x.piece == y.piece)
+                    return "";
         const auto knot = [&](const KnotRef& r, std::uint32_t k) {
             return toString(r.piece) + " row " + std::to_string(r.row) + " (at z = " +
                    formatNumber(sys.worldPosition(k).z) + " m)";
         };
-        return "; it hangs from " + knot(ra, a) + " and " + knot(*rb, b) +
+        return "; it hangs from " + knot(ra.front(), a) + " and " + knot(rb.front(), b) +
                ": pieces side by side whose last rows end at different heights leave the row "
                "hanging from both too short to span the step";
     }

@@ -264,6 +264,23 @@ TEST_CASE(
     CHECK(sameModel(before, t.s));
 }
 
+TEST_CASE("a gear-down child of bars too short names no sibling as a piece side by side") {
+    // A gear-2 child's row 0 shares the parent's last row. A gear-1/3 child hanging from that
+    // row with bars too short was told it hung from "piece 1 row 29 and piece 2 row 0", pieces
+    // "side by side whose last rows end at different heights": piece 2 is the sibling below.
+    Tube t = tube(48, 30, 2.0, 0.25);
+    edit(t.s, [&](Sculpture& m) { return attachToPiece(m, {t.piece, {2, 1}, 20, 0.2}); });
+    const Sculpture before = t.s;
+    REQUIRE_THROWS_WITH(edit(t.s,
+                             [&](Sculpture& m) {
+                                 return attachToPiece(m, {t.piece, {1, 3}, 5, 0.2});
+                             }),
+                        Contains("piece 3: bar length 0.2 m at row 1") &&
+                            Contains("is not above half the spacing") &&
+                            !Contains("side by side") && !Contains("piece 2"));
+    CHECK(sameModel(before, t.s));
+}
+
 namespace {
 
 /// Sorted (position, rest length) fingerprint of a compiled system, for "nothing changed".
