@@ -8,7 +8,9 @@
 #include "physics/WarmStart.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <optional>
@@ -80,8 +82,11 @@ void report(const std::vector<std::string>& messages, std::vector<std::string>* 
 }
 
 std::string readWhole(const std::filesystem::path& path) {
+    errno = 0;
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw UserError("cannot open " + path.string());
+    if (!in) // why, as the system says it ("No such file or directory")
+        throw UserError("cannot open " + path.string() +
+                        (errno != 0 ? ": " + std::string(std::strerror(errno)) : std::string()));
     std::ostringstream buffer;
     buffer << in.rdbuf();
     return buffer.str();

@@ -333,8 +333,11 @@ TEST_CASE("journal versions and headers") {
             CHECK_THAT(readBytes(path), StartsWith("netsculpt-journal 1\n"));
         }
     }
-    SECTION("a missing file is an error") {
+    SECTION("a missing file is an error that says so") {
         REQUIRE_THROWS_AS(Document::open(dir / "missing.netj"), UserError);
+        // The studio's --open and File > Open said only "cannot open PATH".
+        REQUIRE_THROWS_WITH(Document::load(dir / "missing.netj"),
+                            Contains("missing.netj: No such file or directory"));
     }
 }
 
