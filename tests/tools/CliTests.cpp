@@ -413,6 +413,15 @@ TEST_CASE("replay, to-lua, relax, export and report on a journal", "[cli]") {
     const Ran badName = runCli("export " + quoted(journal) + " " + quoted(dir / "k.docx"));
     CHECK(badName.exitCode == 1); // refused before relaxing, which can take a while
     CHECK_THAT(badName.output, Contains("cannot export to .docx") && !Contains("relaxed it"));
+    // So is a file where a folder of the path should be (it was refused after relaxing).
+    std::ofstream(dir / "a-file") << "x";
+    const Ran badFolder = runCli("export " + quoted(journal) + " " + quoted(dir / "j2.csv") + " " +
+                                 quoted(dir / "a-file" / "k.csv"));
+    CHECK(badFolder.exitCode == 1);
+    CHECK_THAT(badFolder.output, Contains("cannot create the output folder") &&
+                                     Contains("is a file, not a folder") &&
+                                     !Contains("relaxed it"));
+    CHECK_FALSE(fs::exists(dir / "j2.csv"));
     REQUIRE(runCli("relax " + quoted(journal) + " -q --out " + quoted(dir / "r")).exitCode == 0);
     REQUIRE(runCli("export " + quoted(dir / "r" / "small.nets") + " -q " + quoted(dir / "r.csv"))
                 .exitCode == 0);

@@ -32,6 +32,22 @@ void createFolder(const fs::path& folder) {
                         (error ? ": " + error.message() : std::string()));
 }
 
+/// Refuses, before a relaxation that may take a while, a folder that createFolder could not
+/// make because a part of its path is a file. Nothing is created here.
+void checkFolderPath(const fs::path& folder) {
+    std::error_code error;
+    for (fs::path part = folder; !part.empty(); part = part.parent_path()) {
+        if (fs::exists(part, error)) {
+            if (!fs::is_directory(part, error))
+                throw UserError("cannot create the output folder " + folder.string() + ": " +
+                                part.string() + " is a file, not a folder");
+            return;
+        }
+        if (part == part.parent_path())
+            return;
+    }
+}
+
 /// Opens a design, saying what it dropped (a torn last entry) even with --quiet, which keeps
 /// errors and warnings: that entry is gone from every output of this command.
 Document openDocument(const fs::path& path) {
@@ -310,8 +326,10 @@ int exportDocument(const ExportArgs& a, Verbosity verbosity) {
     options.width = a.width;
     options.height = a.height;
     options.view = a.view;
-    for (const fs::path& file : a.files)
-        checkExport(file, options); // before a relaxation that may take a while
+    for (const fs::path& file : a.files) { // before a relaxation that may take a while
+        checkExport(file, options);
+        checkFolderPath(file.parent_path());
+    }
     Document doc = openDocument(a.document);
     const int exitCode = relaxUnlessRelaxed(doc, a.document, a.relaxFirst, "export", verbosity);
     for (const fs::path& file : a.files) {
