@@ -99,7 +99,7 @@ std::vector<Handle> handlesForMode(Mode mode, const Sculpture& s, const Compiled
                 out.push_back(pieceHandle(HandleKind::ColumnsEdge, p, 0, middleColumn, compiled, settings));
             break;
         case Mode::BarLength: {
-            if (p.bar.axis == BarAxis::Row && p.bar.first != p.bar.last) {
+            if (p.bar.gradedByRow()) {
                 // Graded by row (never seamed): its top and its last row, each set on its own.
                 // The top's sphere sits on row 1, where the top bars end (row 0 may be another
                 // piece's last row, with a sphere of its own).

@@ -167,23 +167,30 @@ PieceId attachToPiece(Sculpture& s, const AttachToPieceArgs& a) {
     return id;
 }
 
+std::string splitRefusal(const Sculpture& s, PieceId id) {
+    const Piece& p = s.piece(id);
+    if (!p.closed && p.columns < 3)
+        return "split: " + toString(id) + " is an open piece of " + std::to_string(p.columns) +
+               " columns, which has no column to split at (an open piece needs 3)";
+    // Seamed pieces vary their bar length by column (set_bar_length's rule): a profile by row
+    // would be rescaled on one side of the seam by the next set_rows of one part.
+    if (p.bar.gradedByRow())
+        return "split: " + toString(id) +
+               " varies its bar length by row, and seamed pieces vary it by column; set its bar "
+               "length by column (or to one length) before splitting it";
+    return {};
+}
+
 std::pair<PieceId, PieceId> split(Sculpture& s, PieceId id, int column) {
+    if (const std::string refusal = splitRefusal(s, id); !refusal.empty())
+        throw UserError(refusal);
     Piece& a = s.piece(id);
     const int c = a.columns;
     const int last = a.closed ? c - 1 : c - 2;
-    if (last < 1)
-        throw UserError("split: " + toString(id) + " is an open piece of " + std::to_string(c) +
-                        " columns, which has no column to split at (an open piece needs 3)");
     if (column < 1 || column > last)
-        throw UserError("split: column must be from 1 to " + std::to_string(last) + " for " + toString(id) + " (" +
-                        std::to_string(c) + " columns, " + (a.closed ? "closed" : "open") + "), got " +
-                        std::to_string(column));
-    // Seamed pieces vary their bar length by column (set_bar_length's rule): a profile by row
-    // would be rescaled on one side of the seam by the next set_rows of one part.
-    if (a.bar.axis == BarAxis::Row && a.bar.first != a.bar.last)
-        throw UserError("split: " + toString(id) +
-                        " varies its bar length by row, and seamed pieces vary it by column; set "
-                        "its bar length by column (or to one length) before splitting it");
+        throw UserError("split: column must be from 1 to " + std::to_string(last) + " for " +
+                        toString(id) + " (" + std::to_string(c) + " columns, " +
+                        (a.closed ? "closed" : "open") + "), got " + std::to_string(column));
     const bool wasClosed = a.closed;
     Piece b = a;
     b.id = PieceId(s.nextPieceId++);

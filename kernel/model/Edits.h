@@ -8,6 +8,7 @@
 #include "model/Sculpture.h"
 
 #include <optional>
+#include <string>
 #include <utility>
 
 namespace netsculpt {
@@ -38,6 +39,9 @@ PieceId attachToPiece(Sculpture& s, const AttachToPieceArgs& args);
 /// Splits at `column`: the piece keeps its id and columns 0..column; the returned new piece
 /// holds columns column..end; they share the knots of `column` (a seam).
 std::pair<PieceId, PieceId> split(Sculpture& s, PieceId id, int column);
+/// Why split refuses piece `id` at every column, in its own words (naming the piece and what
+/// to do first); empty when some column may be split.
+[[nodiscard]] std::string splitRefusal(const Sculpture& s, PieceId id);
 void setRows(Sculpture& s, PieceId id, int rows);
 /// On a rail: the new spacing over the same extent. Below a piece: the nearest allowed gear.
 void setColumns(Sculpture& s, PieceId id, int columns);

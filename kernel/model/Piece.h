@@ -63,6 +63,8 @@ struct BarProfile {
         if (from == to) return first;
         return first + (last - first) * (double(index - from) / double(to - from));
     }
+    /// Varies by row from one length to another (a profile by row of one length does not).
+    bool gradedByRow() const { return axis == BarAxis::Row && first != last; }
 };
 
 struct Piece {

@@ -212,6 +212,7 @@ TEST_CASE("a split or a gear that leaves too few columns says so in the piece's 
     });
     REQUIRE_THROWS_WITH(edit(s, [&](Sculpture& m) { return split(m, narrow, 1); }),
                         Contains("is an open piece of 2 columns, which has no column to split at"));
+    CHECK_THAT(splitRefusal(s, narrow), Contains("is an open piece of 2 columns"));
     Tube t = tube(6, 3, 1.0, 0.6);
     REQUIRE_THROWS_WITH(
         edit(t.s,
@@ -349,11 +350,20 @@ TEST_CASE("a piece graded by row is not split: seamed pieces vary their bar leng
                         Contains("piece 1 varies its bar length by row") &&
                             Contains("set its bar length by column"));
     CHECK(sameModel(before, s));
+    // Asked before a split (the studio's divide mode), the refusal is the same, word for word.
+    std::string refused;
+    try {
+        (void)split(s, p, 4);
+    } catch (const UserError& e) {
+        refused = e.what();
+    }
+    CHECK(splitRefusal(s, p) == refused);
     // One length again: the split is the same net, rest length for rest length.
     edit(s, [&](Sculpture& m) {
         setBarLength(m, p, std::nullopt, 0.6);
         return 0;
     });
+    CHECK(splitRefusal(s, p).empty());
     const auto whole = compileSculpture(s);
     edit(s, [&](Sculpture& m) { return split(m, p, 4); });
     CHECK(fingerprint(compileSculpture(s).system) == fingerprint(whole.system));
