@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <utility>
 
 namespace netsculpt {
 
@@ -69,6 +70,8 @@ void Interaction::setDocument(Document& doc) {
 
 void Interaction::setMode(Mode mode) {
     if (drag_ == Drag::Handle) return; // finish the gesture first
+    if (mode != mode_)
+        say({}, false); // the message was about the old mode's work
     mode_ = mode;
     refresh();
 }
@@ -99,34 +102,35 @@ void Interaction::updateHover() {
                    : pickHandle(handles_, *camera_, cursorX_, cursorY_, settings_.pickRadiusPixels);
 }
 
+void Interaction::say(std::string message, bool error) {
+    message_ = std::move(message);
+    messageIsError_ = error;
+}
+
 bool Interaction::execute(const Command& command, bool merge) {
     try {
         lastCreated_ = doc_->execute(command, merge);
     } catch (const UserError& e) {
-        message_ = e.what();
-        messageIsError_ = true;
+        say(e.what(), true);
         return false;
     }
-    message_ = commandName(command);
-    messageIsError_ = false;
+    say(commandName(command), false);
     changed();
     return true;
 }
 
 bool Interaction::undo() {
     if (drag_ == Drag::Handle || !doc_->canUndo()) return false;
-    message_ = "undo " + doc_->undoName();
+    say("undo " + doc_->undoName(), false);
     doc_->undo();
-    messageIsError_ = false;
     changed();
     return true;
 }
 
 bool Interaction::redo() {
     if (drag_ == Drag::Handle || !doc_->canRedo()) return false;
-    message_ = "redo " + doc_->redoName();
+    say("redo " + doc_->redoName(), false);
     doc_->redo();
-    messageIsError_ = false;
     changed();
     return true;
 }
@@ -212,8 +216,7 @@ void Interaction::onRelease(MouseButton button) {
                 const Handle& t = handles_[std::size_t(target)];
                 execute(ConnectToRailCommand{h.piece, t.rail, t.t, t.reverse});
             } else {
-                message_ = "connect: dropped away from the rails; nothing changed";
-                messageIsError_ = false;
+                say("connect: dropped away from the rails; nothing changed", false);
             }
         } else if (click) {
             clickHandle(h);
@@ -244,8 +247,9 @@ void Interaction::clickHandle(const Handle& h) {
             break;
         selected_ = lastCreated_.pieces.front();
         if (already)
-            message_ = "attach_to_rail: " + toString(h.rail) + " already holds " +
-                       toString(already) + "; the new piece hangs over it (Ctrl+Z takes it back)";
+            say("attach_to_rail: " + toString(h.rail) + " already holds " + toString(already) +
+                    "; the new piece hangs over it (Ctrl+Z takes it back)",
+                false);
         break;
     }
     case HandleKind::LastRow: {
@@ -332,8 +336,7 @@ void Interaction::clampDragTowards(double wanted, int perUnit,
     }
     const long long next = allowed + (target > allowed ? 1 : -1);
     if (next == target) { // its refusal is the one to show
-        message_ = refusal;
-        messageIsError_ = true;
+        say(refusal, true);
     } else if (execute(commandFor(valueOf(next)), /*merge=*/true)) { // refused: its message stays
         lastApplied_ = valueOf(next);
     }

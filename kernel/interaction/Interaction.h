@@ -58,6 +58,8 @@ class Interaction {
     InteractionSettings& settings() { return settings_; }
 
     Mode mode() const { return mode_; }
+    /// Switches the mode (not during a handle drag); a switch clears the message, which was
+    /// about the old mode's work.
     void setMode(Mode mode);
 
     /// Feeds one event. Never throws for user errors: a refused command leaves the document as it
@@ -90,6 +92,8 @@ class Interaction {
 
     /// Increases on every change of the document through this class (and on setDocument).
     std::uint64_t version() const { return version_; }
+    /// What the status line says for this layer: the last command's name or refusal, or a drop
+    /// that changed nothing. Empty after a mode switch (the new mode's hint is due).
     const std::string& message() const { return message_; }
     bool messageIsError() const { return messageIsError_; }
 
@@ -105,6 +109,7 @@ class Interaction {
                           const std::function<Command(double)>& commandFor);
     void clickHandle(const Handle& h);
     void updateHover();
+    void say(std::string message, bool error);
     PieceId pieceAt(double x, double y) const;
     void changed();
 

@@ -333,6 +333,26 @@ TEST_CASE("connect: a drop away from every rail changes nothing and journals not
     CHECK(ui.handles().size() == 1); // back to the sources
 }
 
+TEST_CASE("a mode switch clears the message about the old mode's work", "[interaction]") {
+    Scene scene;
+    Interaction ui(scene.doc, scene.camera);
+    ui.setMode(Mode::Rows);
+    dragHandle(ui, ui.handles().front(), 16);
+    CHECK(ui.message() == "set_rows");
+    ui.handle(KeyPress{'R', {}}); // the mode it is in: the message stays
+    CHECK(ui.message() == "set_rows");
+    ui.handle(KeyPress{'J', {}});
+    CHECK(ui.mode() == Mode::Connect);
+    CHECK(ui.message().empty()); // the status line shows connect's hint, not "set_rows"
+    // A refusal too, and its error colour.
+    ui.setMode(Mode::Rows);
+    CHECK_FALSE(ui.execute(SetRowsCommand{scene.net, 0}));
+    REQUIRE(ui.messageIsError());
+    ui.handle(KeyPress{keys::Escape, {}});
+    CHECK(ui.message().empty());
+    CHECK_FALSE(ui.messageIsError());
+}
+
 TEST_CASE("keys: ctrl+z undoes, ctrl+shift+z and ctrl+y redo, letters choose modes", "[interaction]") {
     Scene scene;
     Interaction ui(scene.doc, scene.camera);
