@@ -1,5 +1,7 @@
 #include "interaction/Handles.h"
 
+#include "model/Edits.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -88,6 +90,8 @@ std::vector<Handle> handlesForMode(Mode mode, const Sculpture& s, const Compiled
                 out.push_back(pieceHandle(HandleKind::LastRow, p, last, middleColumn, compiled, settings));
             break;
         case Mode::Divide: {
+            if (!splitRefusal(s, id).empty())
+                break; // the studio offers no split the model refuses
             const int lastSplit = p.closed ? p.columns - 1 : p.columns - 2;
             for (int c = 1; c <= lastSplit; ++c) out.push_back(pieceHandle(HandleKind::TopKnot, p, 0, c, compiled, settings));
             break;

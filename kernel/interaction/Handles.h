@@ -15,7 +15,7 @@ namespace netsculpt {
 enum class Mode {
     View,      ///< camera only: no handles
     NewNet,    ///< spheres on rails and on free last rows; a click creates a piece there
-    Divide,    ///< spheres on top knots; a click splits the piece at that column
+    Divide,    ///< spheres on top knots of pieces split allows; a click splits there
     Rows,      ///< a sphere on each last row; drag down = more rows, up = fewer
     Columns,   ///< a sphere on each top edge; drag up = more columns (or a larger gear)
     BarLength, ///< spheres on first columns and seams; drag up = shorter bars, down = longer

@@ -1,5 +1,6 @@
 #include "interaction/Interaction.h"
 
+#include "model/Edits.h"
 #include "model/Error.h"
 
 #include <algorithm>
@@ -100,11 +101,32 @@ void Interaction::updateHover() {
     hovered_ = drag_ == Drag::Orbit || drag_ == Drag::Pan
                    ? -1
                    : pickHandle(handles_, *camera_, cursorX_, cursorY_, settings_.pickRadiusPixels);
+    updatePointerNote();
+}
+
+/// Divide mode offers no sphere on a piece that split refuses; while the cursor is on such a
+/// piece (and on no sphere of another), the message gives split's reason, naming the piece and
+/// what to do first. Split asks a piece graded by row for its bar length by column or one
+/// length; the studio sets a graded piece's bars by row, so one length is its way there.
+void Interaction::updatePointerNote() {
+    const Sculpture& s = doc_->sculpture();
+    const bool onPiece = mode_ == Mode::Divide && drag_ == Drag::None && hovered_ < 0 &&
+                         hoveredPiece_ && s.hasPiece(hoveredPiece_);
+    std::string refusal = onPiece ? splitRefusal(s, hoveredPiece_) : std::string();
+    if (!refusal.empty() && s.piece(hoveredPiece_).bar.gradedByRow())
+        refusal += " (here: give its bar top and bar last row one length in the inspector)";
+    if (!refusal.empty()) {
+        say(std::move(refusal), true);
+        messageIsPointerNote_ = true;
+    } else if (messageIsPointerNote_) {
+        say({}, false); // the cursor left the piece: the mode's hint again
+    }
 }
 
 void Interaction::say(std::string message, bool error) {
     message_ = std::move(message);
     messageIsError_ = error;
+    messageIsPointerNote_ = false;
 }
 
 bool Interaction::execute(const Command& command, bool merge) {

@@ -92,8 +92,9 @@ class Interaction {
 
     /// Increases on every change of the document through this class (and on setDocument).
     std::uint64_t version() const { return version_; }
-    /// What the status line says for this layer: the last command's name or refusal, or a drop
-    /// that changed nothing. Empty after a mode switch (the new mode's hint is due).
+    /// What the status line says for this layer: the last command's name or refusal, a drop
+    /// that changed nothing, or in divide mode why split refuses the piece under the cursor
+    /// (while it is there). Empty after a mode switch (the new mode's hint is due).
     const std::string& message() const { return message_; }
     bool messageIsError() const { return messageIsError_; }
 
@@ -109,6 +110,7 @@ class Interaction {
                           const std::function<Command(double)>& commandFor);
     void clickHandle(const Handle& h);
     void updateHover();
+    void updatePointerNote();
     void say(std::string message, bool error);
     PieceId pieceAt(double x, double y) const;
     void changed();
@@ -133,6 +135,7 @@ class Interaction {
     std::uint64_t version_ = 1;
     std::string message_;
     bool messageIsError_ = false;
+    bool messageIsPointerNote_ = false; ///< message_ is about the piece under the cursor
 };
 
 } // namespace netsculpt

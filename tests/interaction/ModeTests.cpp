@@ -152,6 +152,41 @@ TEST_CASE("divide: a click on a top knot splits the piece at that column", "[int
     CHECK(scene.doc.compiled().system.knotCount() == knots); // a split changes ownership only
 }
 
+TEST_CASE("divide: a piece graded by row has no spheres, and pointing at it says why",
+          "[interaction]") {
+    Scene scene;
+    scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, 5, 0.3}); // graded by row
+    const PieceId sheet = attachPiece(scene.doc, scene.beam, 5, 4, 0.3);
+    Interaction ui(scene.doc, scene.camera);
+    ui.setMode(Mode::Divide);
+    // Only the sheet's: an open sheet of 5 columns splits at 1 .. 3.
+    CHECK(ui.handles().size() == 3);
+    for (const Handle& h : ui.handles())
+        CHECK(h.piece == sheet);
+
+    const MassSpringSystem& sys = scene.doc.compiled().system;
+    const ScreenPoint knot =
+        onScreen(scene.camera, sys.position[scene.doc.compiled().knotOf(scene.net, 3, 5)]);
+    moveTo(ui, knot.x, knot.y);
+    REQUIRE(ui.hoveredPiece() == scene.net);
+    CHECK(ui.messageIsError());
+    // Split's own words, naming the piece and what to do, and the studio's way to do it.
+    CHECK_THAT(ui.message(),
+               Catch::Matchers::StartsWith("split: piece 1 varies its bar length by row") &&
+                   Catch::Matchers::Contains("set its bar length by column (or to one length)") &&
+                   Catch::Matchers::Contains("bar top and bar last row one length"));
+    moveTo(ui, 5, 5); // away from every net: the mode's hint is due again
+    CHECK(ui.message().empty());
+    CHECK_FALSE(ui.messageIsError());
+
+    // One length again: the spheres come back, and pointing at the piece says nothing.
+    scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, 0, 0.3});
+    ui.refresh();
+    CHECK(ui.handles().size() == 3 + 23);
+    moveTo(ui, knot.x, knot.y);
+    CHECK(ui.message().empty());
+}
+
 TEST_CASE("columns: on a rail a drag up adds columns, below a piece it steps through the gears", "[interaction]") {
     Scene scene;
     Interaction ui(scene.doc, scene.camera);

@@ -45,7 +45,9 @@ const char* modeHint(Mode m) {
     switch (m) {
     case Mode::View: return "Drag to orbit, right-drag to pan, wheel to zoom, click a net to select it.";
     case Mode::NewNet: return "Click a sphere on a rail or under a last row to hang a new net there.";
-    case Mode::Divide: return "Click a top knot to split the piece at that column.";
+    case Mode::Divide:
+        return "Click a top knot to split the piece at that column (point at a piece without "
+               "spheres to see why it cannot be split).";
     case Mode::Rows: return "Drag a sphere down to add rows, up to remove them (8 px per row).";
     case Mode::Columns: return "Drag up for more columns (on a rail) or a larger gear (below a piece).";
     case Mode::BarLength: return "Drag up for shorter bars, down for longer (seam partners follow).";
@@ -242,10 +244,12 @@ void Panels::drawTensionScale(double maxTension) {
 }
 
 void Panels::drawStatus(App& app) {
+    // Along the window's bottom edge, as tall as its text: a long message (a refusal with what
+    // to do, an export's warning) wraps instead of running off the window's right edge.
     const ImGuiViewport* vp = ImGui::GetMainViewport();
-    const float height = ImGui::GetFrameHeight() + 8;
-    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x, vp->Pos.y + vp->Size.y - height));
-    ImGui::SetNextWindowSize(ImVec2(vp->Size.x, height));
+    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x, vp->Pos.y + vp->Size.y), ImGuiCond_Always,
+                            ImVec2(0, 1));
+    ImGui::SetNextWindowSize(ImVec2(vp->Size.x, 0)); // height 0: fitted to the text
     ImGui::SetNextWindowBgAlpha(0.7f);
     const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoSavedSettings |
                                    ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoMove;
@@ -256,8 +260,11 @@ void Panels::drawStatus(App& app) {
         ImGui::SameLine();
         const bool error = !app.notice().empty() ? app.noticeIsError() : ui.messageIsError();
         const std::string& text = !app.notice().empty() ? app.notice() : ui.message();
-        if (error) ImGui::TextColored(ImVec4(1, 0.45f, 0.35f, 1), "%s", text.c_str());
-        else ImGui::TextDisabled("%s", text.empty() ? modeHint(ui.mode()) : text.c_str());
+        const ImVec4 colour =
+            error ? ImVec4(1, 0.45f, 0.35f, 1) : ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled);
+        ImGui::PushStyleColor(ImGuiCol_Text, colour);
+        ImGui::TextWrapped("%s", text.empty() ? modeHint(ui.mode()) : text.c_str());
+        ImGui::PopStyleColor();
     }
     ImGui::End();
 }
