@@ -42,6 +42,12 @@ PieceId pieceOnRail(const Sculpture& s, RailId rail) {
     return PieceId{};
 }
 
+/// Handles that execute a command when clicked (the value handles act by dragging).
+bool actsOnClick(HandleKind kind) {
+    return kind == HandleKind::RailPoint || kind == HandleKind::LastRow ||
+           kind == HandleKind::TopKnot;
+}
+
 /// Whole pixels of drag turned into whole steps, towards zero (a 7 px drag at 8 px/row is 0 rows).
 /// (The small allowance keeps an exact multiple that arrives as 71.99999... px a whole step.)
 int steps(double pixels, double pixelsPerStep) {
@@ -98,7 +104,7 @@ void Interaction::frameAll() {
 }
 
 void Interaction::updateHover() {
-    hovered_ = drag_ == Drag::Orbit || drag_ == Drag::Pan
+    hovered_ = drag_ == Drag::Orbit || drag_ == Drag::Pan || pointerOverPanel_
                    ? -1
                    : pickHandle(handles_, *camera_, cursorX_, cursorY_, settings_.pickRadiusPixels);
     updatePointerNote();
@@ -178,7 +184,9 @@ void Interaction::onMove(double x, double y) {
     case Drag::Orbit: camera_->orbit(dx, dy, settings_.orbitRadiansPerPixel); break;
     case Drag::Pan: camera_->pan(dx, dy); break;
     case Drag::Handle: dragHandleTo(y); break;
-    case Drag::None: hoveredPiece_ = pieceAt(x, y); break;
+    case Drag::None:
+        hoveredPiece_ = pointerOverPanel_ ? PieceId{} : pieceAt(x, y);
+        break;
     }
     updateHover();
 }
@@ -228,27 +236,45 @@ void Interaction::onRelease(MouseButton button) {
     const Drag was = drag_;
     drag_ = Drag::None;
     if (was == Drag::Handle && dragHandle_) {
-        const Handle h = *dragHandle_;
-        dragHandle_.reset();
-        if (h.kind == HandleKind::ConnectSource) {
-            // Drop on a rail sphere ("on top of" = projections within the pick radius); elsewhere
-            // nothing happens and nothing is journaled.
-            const int target = pickHandle(handles_, *camera_, cursorX_, cursorY_, settings_.pickRadiusPixels);
-            if (target >= 0) {
-                const Handle& t = handles_[std::size_t(target)];
-                execute(ConnectToRailCommand{h.piece, t.rail, t.t, t.reverse});
-            } else {
-                say("connect: dropped away from the rails; nothing changed", false);
-            }
-        } else if (click) {
+        const Handle h = *std::exchange(dragHandle_, std::nullopt);
+        if (pointerOverPanel_)
+            releaseOverPanel(h, click);
+        else if (h.kind == HandleKind::ConnectSource)
+            dropOnRail(h);
+        else if (click)
             clickHandle(h);
-        }
         doc_->endGesture();
         refresh();
         return;
     }
-    if (was == Drag::Orbit && click) selected_ = pieceAt(cursorX_, cursorY_);
+    if (was == Drag::Orbit && click && !pointerOverPanel_)
+        selected_ = pieceAt(cursorX_, cursorY_);
     updateHover();
+}
+
+/// Drop on a rail sphere ("on top of" = projections within the pick radius); elsewhere nothing
+/// happens and nothing is journaled.
+void Interaction::dropOnRail(const Handle& source) {
+    const int target =
+        pickHandle(handles_, *camera_, cursorX_, cursorY_, settings_.pickRadiusPixels);
+    if (target >= 0) {
+        const Handle& t = handles_[std::size_t(target)];
+        execute(ConnectToRailCommand{source.piece, t.rail, t.t, t.reverse});
+    } else {
+        say("connect: dropped away from the rails; nothing changed", false);
+    }
+}
+
+/// A panel hides what a drop or a click released over it would act on (a rail sphere, a net
+/// behind it), so neither acts. A value drag made its change as it moved; its release adds
+/// nothing there or elsewhere.
+void Interaction::releaseOverPanel(const Handle& h, bool click) {
+    if (h.kind == HandleKind::ConnectSource)
+        say("connect: dropped over a panel; nothing changed (drop the row on a rail sphere in "
+            "the view)",
+            false);
+    else if (click && actsOnClick(h.kind))
+        say(std::string(modeName(mode_)) + ": released over a panel; nothing changed", false);
 }
 
 void Interaction::clickHandle(const Handle& h) {

@@ -7,7 +7,9 @@
 // elsewhere orbits (left) or pans (right, middle, shift+left); the wheel zooms. A drag that
 // changes a value executes its command with merge = true on every change and endGesture() on
 // release, so the whole drag is one undo step. A click (press and release within a few pixels)
-// on a NewNet or Divide handle executes one command. A click on the net selects a piece.
+// on a NewNet or Divide handle executes one command. A click on the net selects a piece. A
+// release over one of the window's panels (setPointerOverPanel) drops nothing and clicks
+// nothing: the panel hides what it would act on.
 //
 // Keys: ctrl+z undo; ctrl+shift+z or ctrl+y redo; 1..7 or V N D R C B J choose the mode (view,
 // new net, divide, rows, columns, bar length, connect); T, F, S, P top/front/side/perspective
@@ -62,6 +64,12 @@ class Interaction {
     /// about the old mode's work.
     void setMode(Mode mode);
 
+    /// Whether the window's panels cover the view at the cursor (the window says so before each
+    /// move and release it feeds): nothing behind a panel is hovered, and a release there acts on
+    /// nothing the panel hides: a connect drop or a click on a sphere is cancelled (the message
+    /// says so), a click selects no piece. A value drag keeps what its moves have changed.
+    void setPointerOverPanel(bool over) { pointerOverPanel_ = over; }
+
     /// Feeds one event. Never throws for user errors: a refused command leaves the document as it
     /// was and its message in message().
     void handle(const InputEvent& event);
@@ -92,9 +100,9 @@ class Interaction {
 
     /// Increases on every change of the document through this class (and on setDocument).
     std::uint64_t version() const { return version_; }
-    /// What the status line says for this layer: the last command's name or refusal, a drop
-    /// that changed nothing, or in divide mode why split refuses the piece under the cursor
-    /// (while it is there). Empty after a mode switch (the new mode's hint is due).
+    /// What the status line says for this layer: the last command's name or refusal, a
+    /// cancelled drop, or in divide mode why split refuses the piece under the cursor (while it
+    /// is there). Empty after a mode switch (the new mode's hint is due).
     const std::string& message() const { return message_; }
     bool messageIsError() const { return messageIsError_; }
 
@@ -109,6 +117,8 @@ class Interaction {
     void clampDragTowards(double wanted, int perUnit,
                           const std::function<Command(double)>& commandFor);
     void clickHandle(const Handle& h);
+    void dropOnRail(const Handle& source);
+    void releaseOverPanel(const Handle& h, bool click);
     void updateHover();
     void updatePointerNote();
     void say(std::string message, bool error);
@@ -122,6 +132,7 @@ class Interaction {
     std::vector<Handle> handles_;
     int hovered_ = -1;
     PieceId hoveredPiece_, selected_;
+    bool pointerOverPanel_ = false;
 
     Drag drag_ = Drag::None;
     MouseButton dragButton_ = MouseButton::Left;

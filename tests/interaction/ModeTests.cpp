@@ -368,6 +368,85 @@ TEST_CASE("connect: a drop away from every rail changes nothing and journals not
     CHECK(ui.handles().size() == 1); // back to the sources
 }
 
+TEST_CASE("connect: a drop over a panel changes nothing, though a rail sphere lies behind it",
+          "[interaction]") {
+    Scene scene;
+    TempFile journal("connect-panel.netj");
+    scene.doc.attachJournal(journal.path);
+    Interaction ui(scene.doc, scene.camera);
+    ui.setMode(Mode::Connect);
+    const std::uint64_t hash = scene.doc.hash();
+    const auto bytes = std::filesystem::file_size(journal.path);
+    const ScreenPoint from = onScreen(scene.camera, ui.handles().front().position);
+    moveTo(ui, from.x, from.y);
+    ui.handle(MousePress{MouseButton::Left, {}});
+    const Handle target =
+        findHandle(ui, [&](const Handle& h) { return h.rail == scene.ring && h.t == 0.25; });
+    const ScreenPoint to = onScreen(scene.camera, target.position);
+    moveTo(ui, to.x, to.y);
+    REQUIRE(ui.hovered() >= 0); // in the view the sphere takes the drop ...
+    ui.setPointerOverPanel(true);
+    moveTo(ui, to.x, to.y);
+    CHECK(ui.hovered() == -1); // ... behind a panel it is not offered
+    ui.handle(MouseRelease{MouseButton::Left, {}});
+    CHECK(scene.doc.hash() == hash);
+    CHECK(std::filesystem::file_size(journal.path) == bytes);
+    CHECK_FALSE(scene.doc.sculpture().piece(scene.net).bottom.has_value());
+    CHECK_FALSE(ui.messageIsError());
+    CHECK_THAT(ui.message(), Catch::Matchers::StartsWith("connect: dropped over a panel; nothing "
+                                                         "changed"));
+    CHECK(ui.handles().size() == 1); // back to the sources
+}
+
+TEST_CASE("a click released over a panel does nothing, a value drag keeps what it changed",
+          "[interaction]") {
+    Scene scene;
+    Interaction ui(scene.doc, scene.camera);
+    const std::uint64_t hash = scene.doc.hash();
+    // A press on a sphere in the view, the release over a panel (a sphere at a panel's edge):
+    // no new net, no split.
+    for (Mode mode : {Mode::NewNet, Mode::Divide}) {
+        ui.setMode(mode);
+        const ScreenPoint sp = onScreen(scene.camera, ui.handles().front().position);
+        ui.setPointerOverPanel(false);
+        moveTo(ui, sp.x, sp.y);
+        ui.handle(MousePress{MouseButton::Left, {}});
+        ui.setPointerOverPanel(true);
+        moveTo(ui, sp.x + 3, sp.y); // within a click's slop
+        ui.handle(MouseRelease{MouseButton::Left, {}});
+        INFO(modeName(mode));
+        CHECK(scene.doc.hash() == hash);
+        CHECK(ui.message() ==
+              std::string(modeName(mode)) + ": released over a panel; nothing changed");
+    }
+    // A click on the net released over a panel selects nothing.
+    ui.setMode(Mode::View);
+    ui.select(PieceId{}); // the presses on the spheres above selected their piece
+    const ScreenPoint knot = onScreen(
+        scene.camera,
+        scene.doc.compiled().system.position[scene.doc.compiled().knotOf(scene.net, 3, 5)]);
+    ui.setPointerOverPanel(false);
+    moveTo(ui, knot.x, knot.y);
+    ui.handle(MousePress{MouseButton::Left, {}});
+    ui.setPointerOverPanel(true);
+    ui.handle(MouseRelease{MouseButton::Left, {}});
+    CHECK(ui.selectedPiece() == PieceId{});
+    // A rows drag changes the rows as it moves, over a panel too; its release adds nothing.
+    ui.setMode(Mode::Rows);
+    const ScreenPoint end = onScreen(scene.camera, ui.handles().front().position);
+    ui.setPointerOverPanel(false);
+    moveTo(ui, end.x, end.y);
+    ui.handle(MousePress{MouseButton::Left, {}});
+    moveTo(ui, end.x, end.y + 8);
+    ui.setPointerOverPanel(true);
+    moveTo(ui, end.x, end.y + 16);
+    ui.handle(MouseRelease{MouseButton::Left, {}});
+    CHECK(scene.doc.sculpture().piece(scene.net).rows == 8);
+    CHECK(ui.message() == "set_rows");
+    ui.undo(); // one undo step
+    CHECK(scene.doc.hash() == hash);
+}
+
 TEST_CASE("a mode switch clears the message about the old mode's work", "[interaction]") {
     Scene scene;
     Interaction ui(scene.doc, scene.camera);

@@ -1,7 +1,8 @@
 // netsculpt-studio itself, under Xvfb: it replays tests/data/studio/add_rows.events on the demo,
 // then the test reads the journal the studio wrote (the expected commands, one undo step) and the
 // screenshot (the net is drawn, in the piece colours, where the fixed camera projects its knots);
-// hold_rows.events checks when the studio refines.
+// hold_rows.events checks when the studio refines; a connect drag released over a panel
+// connects nothing.
 
 #include "commands/Journal.h"
 #include "interaction/DemoScenes.h"
@@ -16,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -264,4 +266,100 @@ TEST_CASE("studio: a relaxed snapshot opens as it is, without a soft preview") {
     CHECK_THAT(log, Catch::Matchers::Contains("while relaxing (0 frames"));
     // The session journal holds the snapshot's history.
     CHECK(readJournal(out / "out.netj").entries.size() == 7);
+}
+
+namespace {
+
+/// Window pixels that one of the studio's side panels covers whatever it shows: the inspector
+/// (left; its piece fields once a press has selected a piece) and the solver (right).
+bool underSidePanel(const ScreenPoint& p) {
+    const bool inspector = p.x > 40 && p.x < 270 && p.y > 90 && p.y < 290;
+    const bool solver = p.x > 1020 && p.x < 1260 && p.y > 50 && p.y < 115;
+    return p.visible && (inspector || solver);
+}
+
+/// Window pixels well inside the view, clear of every panel.
+bool inOpenView(const ScreenPoint& p) {
+    return p.visible && p.x > kViewLeft + 20 && p.x < kViewRight - 20 && p.y > kViewTop + 40 &&
+           p.y < kViewBottom - 40;
+}
+
+/// A camera on the demo (the studio's, zoomed in by `notches`) where the sheet's last-row sphere
+/// (piece 3, the demo's one free last row) shows in the view, with the rail positions it may
+/// connect to: one behind a side panel, one in the view.
+struct ConnectScene {
+    int notches = 0;
+    ScreenPoint source, behindPanel, inView;
+};
+
+std::optional<ConnectScene> findConnectScene() {
+    Document demo;
+    buildDemoSculpture(demo);
+    const Handle source = handlesForMode(Mode::Connect, demo.sculpture(), demo.compiled()).front();
+    const std::vector<Handle> targets =
+        connectTargets(demo.sculpture(), demo.compiled(), source.piece);
+    for (int notches = 0; notches <= 8; ++notches) {
+        Camera camera = studioCamera();
+        camera.zoom(notches);
+        ConnectScene scene{notches, camera.project(source.position), {}, {}};
+        if (!inOpenView(scene.source))
+            continue;
+        bool behind = false, open = false;
+        for (const Handle& t : targets) {
+            const ScreenPoint p = camera.project(t.position);
+            if (!behind && underSidePanel(p))
+                scene.behindPanel = p, behind = true;
+            if (!open && inOpenView(p))
+                scene.inView = p, open = true;
+        }
+        if (behind && open)
+            return scene;
+    }
+    return std::nullopt;
+}
+
+/// Events: zoom in, connect mode, the last row carried from its sphere to `to` in ten moves (a
+/// frame each) and released there.
+std::string connectDragEvents(const ConnectScene& scene, const ScreenPoint& to) {
+    std::ostringstream events;
+    events << "frame 3\n";
+    if (scene.notches > 0)
+        events << "scroll " << scene.notches << "\nframe 2\n";
+    events << "key j\nframe 2\nmove " << scene.source.x << ' ' << scene.source.y
+           << "\nframe 2\npress left\nframe 2\n";
+    for (int i = 1; i <= 10; ++i)
+        events << "move " << scene.source.x + (to.x - scene.source.x) * i / 10 << ' '
+               << scene.source.y + (to.y - scene.source.y) * i / 10 << "\nframe 1\n";
+    events << "frame 2\nrelease left\nframe 3\n";
+    return events.str();
+}
+
+/// Runs the demo (no relaxation) with `events`; returns the journal's entries.
+std::vector<JournalEntry> runDemoEvents(const std::string& name, const std::string& events) {
+    const fs::path out = outputFolder(name);
+    std::ofstream(out / "drag.events") << events;
+    runUnderXvfb(out, "--demo --no-relax --size 1280x800 --play \"" +
+                          (out / "drag.events").string() + "\" --exit-after-frames 40 " +
+                          "--screenshot \"" + (out / "out.png").string() + "\"");
+    return readJournal(out / "out.netj").entries;
+}
+
+} // namespace
+
+TEST_CASE("studio: a connect drop released over a panel connects nothing, though a rail sphere "
+          "lies behind it") {
+    const std::optional<ConnectScene> scene = findConnectScene();
+    REQUIRE(scene);
+    INFO("zoomed in " << scene->notches << " notches; the sheet's sphere at " << scene->source.x
+                      << ", " << scene->source.y);
+    // Dropped on a rail sphere in the view, the row connects: the drag reaches the rails.
+    const auto connected =
+        runDemoEvents("connect-in-view", connectDragEvents(*scene, scene->inView));
+    REQUIRE(connected.size() == 8); // the demo's seven commands, and the drop's
+    CHECK(commandName(connected.back().command) == "connect_to_rail");
+    // Dropped where a panel covers a rail sphere, nothing changes and nothing is journaled.
+    INFO("dropped at " << scene->behindPanel.x << ", " << scene->behindPanel.y);
+    const auto dropped =
+        runDemoEvents("connect-over-panel", connectDragEvents(*scene, scene->behindPanel));
+    CHECK(dropped.size() == 7);
 }

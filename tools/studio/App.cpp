@@ -9,6 +9,7 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
+#include <imgui_internal.h> // the windows of the last frame (panelCovers)
 
 #include "interaction/DemoScenes.h"
 #include "model/Error.h"
@@ -65,6 +66,25 @@ double framebufferScale(GLFWwindow* window) {
     glfwGetWindowSize(window, &w, &h);
     glfwGetFramebufferSize(window, &fw, &fh);
     return w > 0 ? double(fw) / w : 1.0;
+}
+
+/// Whether a panel drawn in the last frame covers window pixel (x, y): ImGui's own test of the
+/// window under the mouse (FindHoveredWindow in imgui.cpp), asked whoever owns the mouse. While
+/// a drag that began in the view goes on, ImGui reports no window hovered and does not want the
+/// mouse, yet its panels hide the view behind them.
+bool panelCovers(double x, double y) {
+    const ImGuiContext* context = ImGui::GetCurrentContext();
+    if (!context)
+        return false;
+    const ImVec2 scale = context->IO.DisplayFramebufferScale; // window to framebuffer pixels
+    const ImVec2 at(float(x / (scale.x > 0 ? scale.x : 1)), float(y / (scale.y > 0 ? scale.y : 1)));
+    for (const ImGuiWindow* window : context->Windows) {
+        const bool shown = window->Active && !window->Hidden;
+        if (shown && !(window->Flags & ImGuiWindowFlags_NoMouseInputs) &&
+            window->OuterRectClipped.Contains(at))
+            return true;
+    }
+    return false;
 }
 
 void onCursor(GLFWwindow* w, double x, double y) {
@@ -304,6 +324,7 @@ void App::dispatch(const InputEvent& event) {
     if (const auto* move = std::get_if<MouseMove>(&event)) {
         cursorX_ = move->x, cursorY_ = move->y;
         cursorKnown_ = true;
+        ui.setPointerOverPanel(panelCovers(cursorX_, cursorY_));
         ui.handle(event);
     } else if (const auto* press = std::get_if<MousePress>(&event)) {
         buttonDown_[int(press->button)] = true;
@@ -311,7 +332,10 @@ void App::dispatch(const InputEvent& event) {
         if (!uiHasMouse && !restorePending_) ui.handle(event);
     } else if (const auto* release = std::get_if<MouseRelease>(&event)) {
         buttonDown_[int(release->button)] = false;
-        ui.handle(event); // always: a gesture that started in the view ends wherever the mouse is
+        // Always: a gesture that started in the view ends wherever the mouse is; over a panel it
+        // drops nothing (the panels of the last frame, as the artist sees them).
+        ui.setPointerOverPanel(panelCovers(cursorX_, cursorY_));
+        ui.handle(event);
     } else if (std::holds_alternative<Scroll>(event)) {
         if (!uiHasMouse) ui.handle(event);
     } else if (const auto* key = std::get_if<KeyPress>(&event)) {
