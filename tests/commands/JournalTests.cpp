@@ -196,7 +196,7 @@ TEST_CASE("a torn last entry is dropped with a warning at every byte, and append
     CHECK(warnings.empty());
 }
 
-TEST_CASE("a garbled last entry is dropped; a garbled entry elsewhere is an error with its line") {
+TEST_CASE("a garbled last entry is dropped - a garbled entry elsewhere is an error with its line") {
     TempDir dir;
     const auto path = dir / "j.netj";
     journaledDocument(path);
@@ -341,7 +341,7 @@ TEST_CASE("journal versions and headers") {
     }
 }
 
-TEST_CASE("save writes the compacted history; saveSnapshot the model and shape") {
+TEST_CASE("save writes the compacted history - saveSnapshot the model and shape") {
     TempDir dir;
     Document doc = journaledDocument(dir / "j.netj");
     doc.execute(SetRowsCommand{PieceId(2), 9});

@@ -244,7 +244,7 @@ TEST_CASE("NURBS circle as a closed periodic spline with explicit knots", "[curv
     CHECK(circle.nearestPosition(onCircle(5.5)) == Approx(5.5 / (2 * pi)).epsilon(1e-10));
 }
 
-TEST_CASE("arc-length sampling of a cubic is equally spaced; parameter sampling is not",
+TEST_CASE("arc-length sampling of a cubic is equally spaced - parameter sampling is not",
           "[curve][bspline]") {
     const Curve arc = Curve::build(bspline(unevenControl(), 3));
     const Curve param = Curve::build(bspline(unevenControl(), 3, false, Sampling::Parameter));

@@ -283,7 +283,7 @@ TEST_CASE("live relaxer: the hint holds the tensions before the edit, and new ro
 }
 
 TEST_CASE("live relaxer: a shape is carried on to the same knots only: rows added to a hanging "
-          "piece keep them; more columns, rows of a tied piece or another sculpture do not",
+          "piece keep them - more columns, rows of a tied piece or another sculpture do not",
           "[live]") {
     Scene scene;
     const MassSpringSystem base = scene.doc.compiled().system;

@@ -136,7 +136,7 @@ TEST_CASE("DXF INSERT: what cannot be placed is refused naming the INSERT and th
            "with a scale of x 1e-200, y 1e-200, z 1e-200", "2 distinct points"});
 }
 
-TEST_CASE("DXF layers: frozen, off and Defpoints are not read; layers = {...} chooses") {
+TEST_CASE("DXF layers: frozen, off and Defpoints are not read - layers = {...} chooses") {
     const auto drawn = dxf("layers.dxf");
     REQUIRE(drawn.size() == 1);
     CHECK_THAT(drawn[0].name, Contains("RAIL:"));

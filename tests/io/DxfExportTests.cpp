@@ -246,7 +246,7 @@ TEST_CASE("DXF in site coordinates: a closed rail flagged closed, layers per pie
     CHECK(back[0].curve.points == t.s.rails.begin()->second.curve().spec().points);
 }
 
-TEST_CASE("DXF layer names keep letters, digits, - and _ of the name; colours are ACI") {
+TEST_CASE("DXF layer names keep letters, digits, - and _ of the name - colours are ACI") {
     CHECK(io::dxfLayerName("piece", 3, "") == "piece_3");
     CHECK(io::dxfLayerName("piece", 3, "piece 3") == "piece_3");
     CHECK(io::dxfLayerName("piece", 3, "piece 4") == "piece_3_piece_4");
@@ -263,7 +263,7 @@ TEST_CASE("DXF layer names keep letters, digits, - and _ of the name; colours ar
     CHECK(io::nearestAci(1, 1, 1) == 7);
 }
 
-TEST_CASE("a sculpture's rails alone to DXF; other extensions refused naming the allowed ones") {
+TEST_CASE("a sculpture's rails alone to DXF - other extensions refused naming the allowed ones") {
     const Tube t = tubeWithChild();
     const auto dir = outputDir("dxf-rails");
     exportRailsFile(t.s, dir / "rails.dxf");

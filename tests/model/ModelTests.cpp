@@ -88,7 +88,7 @@ TEST_CASE("knot and bar counts of closed and open pieces") {
     CHECK(everyKnotHasPathUp(o.system));
 }
 
-TEST_CASE("every bar follows the staggering rule; columns wrap only in closed pieces") {
+TEST_CASE("every bar follows the staggering rule - columns wrap only in closed pieces") {
     for (bool closed : {true, false}) {
         Sculpture s;
         const int columns = 8, rows = 6;

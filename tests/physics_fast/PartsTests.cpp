@@ -207,7 +207,7 @@ TEST_CASE("parts: after an edit of one part the others keep their bits and take 
     CHECK(moved == static_cast<int>(components[1].size()));
 }
 
-TEST_CASE("parts: a step limit stops the parts in order; the ones not reached keep their start",
+TEST_CASE("parts: a step limit stops the parts in order - the ones not reached keep their start",
           "[fast]") {
     const ThreeParts t = threeParts();
     const MassSpringSystem start = compileSculpture(t.s).system;

@@ -198,7 +198,8 @@ TEST_CASE("studio: without relaxation the net is drawn exactly where the camera 
     CHECK(stray == 0);
 }
 
-TEST_CASE("studio: no refine starts while a handle is held; it starts once the handle is released") {
+TEST_CASE(
+    "studio: no refine starts while a handle is held - it starts once the handle is released") {
     // hold_rows.events drags piece 2's last row down two rows and holds the button: the preview
     // settles at its soft stiffness and stays there (a refine would be cut short by the drag's
     // next step). Released, the studio refines. --settle waits, at the last frame, for the runs.
