@@ -76,6 +76,12 @@ void hashPiece(Fnv1a& h, const Piece& p) {
     h.f64(p.material.compressionRatio);
     h.f64(p.material.knotMass);
     h.f64(p.material.linearDensity);
+    // Hashed only when given, so that a model without one keeps the hash it had before the
+    // field existed (a snapshot's stored hash is checked when it opens).
+    if (p.material.breakingLoad) {
+        h.flag(true);
+        h.f64(*p.material.breakingLoad);
+    }
     h.f64(p.colour.r);
     h.f64(p.colour.g);
     h.f64(p.colour.b);

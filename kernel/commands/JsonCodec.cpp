@@ -91,6 +91,9 @@ Json materialJson(const Material& m, Json j) {
     j["compression_ratio"] = number(m.compressionRatio, "compression_ratio");
     j["knot_mass"] = number(m.knotMass, "knot_mass");
     j["linear_density"] = number(m.linearDensity, "linear_density");
+    // Written only when given: journals and snapshots without one read as they always did.
+    if (m.breakingLoad)
+        j["breaking_load"] = number(*m.breakingLoad, "breaking_load");
     return j;
 }
 
@@ -100,6 +103,8 @@ Material readMaterial(ObjectReader& r) {
     m.compressionRatio = r.real("compression_ratio");
     m.knotMass = r.real("knot_mass");
     m.linearDensity = r.real("linear_density");
+    if (r.has("breaking_load"))
+        m.breakingLoad = r.real("breaking_load");
     return m;
 }
 

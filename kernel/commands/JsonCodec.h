@@ -64,7 +64,8 @@ Command decodeCommand(const std::string& name, const Json& args);
 /// "2", "1/2"; the reader takes "n" or "n/d" (whether the gear is allowed is the edit's check).
 std::string gearText(Gear g);
 Gear gearFromText(const std::string& text, const std::string& what);
-/// Adds stiffness, compression_ratio, knot_mass, linear_density to `j`.
+/// Adds stiffness, compression_ratio, knot_mass, linear_density, and breaking_load when the
+/// material has one, to `j`.
 Json materialJson(const Material& m, Json j);
 Material readMaterial(ObjectReader& r);
 Json colourJson(const Colour& c);

@@ -70,6 +70,10 @@ class LuaWriter {
         for (const JournalEntry& e : entries) {
             for (RailId id : e.created.rails) rails.insert(id.value);
             for (PieceId id : e.created.pieces) pieces.insert(id.value);
+            const auto* material = std::get_if<SetMaterialCommand>(&e.command);
+            if (e.kind == JournalEntry::Kind::Command && material &&
+                material->material.breakingLoad)
+                breakingLoads_ = true;
         }
         // Lua allows 200 locals per function; past that, handles go into two tables.
         useTables_ = rails.size() + pieces.size() > 150;
@@ -114,10 +118,20 @@ class LuaWriter {
   private:
     std::ostringstream out_;
     bool useTables_ = false;
+    /// Whether any set_material gives a breaking load. set_material keeps the breaking load of a
+    /// call that does not name it, so then a material without one says breaking_load = false;
+    /// without any, set_material is written as it was before breaking loads existed.
+    bool breakingLoads_ = false;
     std::set<std::uint32_t> rails_, pieces_;
 
     std::string declare(std::set<std::uint32_t>& declared, std::uint32_t id) {
         return useTables_ || !declared.insert(id).second ? "" : "local ";
+    }
+    /// ", breaking_load = 3000.0", ", breaking_load = false" (none, after others were given) or "".
+    std::string breakingLoadArg(const Material& m) const {
+        if (m.breakingLoad)
+            return ", breaking_load = " + luaNumber(*m.breakingLoad);
+        return breakingLoads_ ? ", breaking_load = false" : "";
     }
     static bool given(double at) { return at != 0 || std::signbit(at); }
 
@@ -180,9 +194,10 @@ class LuaWriter {
     void write(const DisconnectCommand& c, const CommandResult&) { line("doc:disconnect{piece = " + piece(c.piece) + "}"); }
     void write(const SetMaterialCommand& c, const CommandResult&) {
         const Material& m = c.material;
-        line("doc:set_material{piece = " + piece(c.piece) + ", stiffness = " + luaNumber(m.stiffness) +
-             ", compression_ratio = " + luaNumber(m.compressionRatio) + ", knot_mass = " + luaNumber(m.knotMass) +
-             ", linear_density = " + luaNumber(m.linearDensity) + "}");
+        line("doc:set_material{piece = " + piece(c.piece) + ", stiffness = " +
+             luaNumber(m.stiffness) + ", compression_ratio = " + luaNumber(m.compressionRatio) +
+             ", knot_mass = " + luaNumber(m.knotMass) +
+             ", linear_density = " + luaNumber(m.linearDensity) + breakingLoadArg(m) + "}");
     }
     void write(const SetColourCommand& c, const CommandResult&) {
         line("doc:set_colour{piece = " + piece(c.piece) + ", colour = " +

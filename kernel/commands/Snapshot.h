@@ -1,6 +1,6 @@
 #pragma once
 // Internal to kernel/commands: the snapshot file (Document::saveSnapshot). Line 1 is the header
-// "netsculpt-snapshot 4"; line 2 one JSON object:
+// "netsculpt-snapshot 5"; line 2 one JSON object:
 //   {"hash": "<hashSculpture, 16 hex digits>", "model": {rails, pieces, seams, id counters,
 //    gravity}, "history": [the compacted journal entries that build the model],
 //    "shape": {"warm": bool, "relaxed": bool, "origin": [x, y, z],
@@ -12,8 +12,10 @@
 // in site coordinates is saved to the last bit. Format 1 had no origin: its positions are the
 // sculpture's coordinates (origin (0, 0, 0)), and it is still read. Format 2 had no "residual";
 // format 3 added it (so that an older netsculpt says the file is newer rather than refusing the
-// key), format 4 "tolerance"; all are still read (a shape without a tolerance is reported
-// against the default one).
+// key), format 4 "tolerance", format 5 a material's "breaking_load" (in the model and in the
+// history's set_material, only where one is given); all are still read (a shape without a
+// tolerance is reported against the default one, a model of format 4 or older has no breaking
+// loads).
 // The history lets a loaded snapshot be undone, saved as a journal and turned into Lua; the
 // model and hash make the file self-describing and are checked against the history on load.
 
@@ -29,7 +31,7 @@
 
 namespace netsculpt {
 
-inline constexpr int kSnapshotFormat = 4;
+inline constexpr int kSnapshotFormat = 5;
 inline constexpr std::string_view kSnapshotMagic = "netsculpt-snapshot";
 
 /// Whether a file's text (or its first bytes) is a snapshot's rather than a journal's.

@@ -80,6 +80,29 @@ void refreshParentTop(const Sculpture& s, Piece& p) {
                         " columns; this change would break its join (change the parent before splitting)");
 }
 
+void checkMaterial(const Piece& p) {
+    const Material& m = p.material;
+    if (!(m.stiffness > 0 && m.stiffness <= kMaxStiffness))
+        throw UserError(toString(p.id) +
+                        ": stiffness (EA) must be a number of newtons above 0 and at most " +
+                        formatNumber(kMaxStiffness) + ", got " + formatNumber(m.stiffness));
+    if (!(m.compressionRatio >= 0 && m.compressionRatio <= 1))
+        throw UserError(toString(p.id) + ": compression_ratio must be between 0 and 1, got " +
+                        formatNumber(m.compressionRatio));
+    if (!(m.knotMass >= 0 && m.knotMass <= kMaxKnotMass))
+        throw UserError(toString(p.id) + ": knot_mass must be a number of kilograms from 0 to " +
+                        formatNumber(kMaxKnotMass) + ", got " + formatNumber(m.knotMass));
+    if (!(m.linearDensity >= 0 && m.linearDensity <= kMaxLinearDensity))
+        throw UserError(toString(p.id) + ": linear_density must be a number of kg/m from 0 to " +
+                        formatNumber(kMaxLinearDensity) + ", got " + formatNumber(m.linearDensity));
+    if (!(m.knotMass > 0 || m.linearDensity > 0))
+        throw UserError(toString(p.id) +
+                        ": knot_mass and linear_density are both 0; a net must weigh something");
+    if (m.breakingLoad && !(*m.breakingLoad > 0 && std::isfinite(*m.breakingLoad)))
+        throw UserError(toString(p.id) + ": breaking_load must be a finite number of newtons " +
+                        "above 0 (or none), got " + formatNumber(*m.breakingLoad));
+}
+
 void checkPiece(const Sculpture& s, const Piece& p) {
     if (p.rows < 1 || p.rows > kMaxRows)
         throw UserError(toString(p.id) + ": rows must be between 1 and " + std::to_string(kMaxRows) + ", got " +
@@ -95,21 +118,7 @@ void checkPiece(const Sculpture& s, const Piece& p) {
             throw UserError(toString(p.id) + ": bar length must be a number of metres above 0 and at most " +
                             formatNumber(kMaxBarLength) + ", got " + formatNumber(l));
     }
-    const Material& m = p.material;
-    if (!(m.stiffness > 0 && m.stiffness <= kMaxStiffness))
-        throw UserError(toString(p.id) + ": stiffness (EA) must be a number of newtons above 0 and at most " +
-                        formatNumber(kMaxStiffness) + ", got " + formatNumber(m.stiffness));
-    if (!(m.compressionRatio >= 0 && m.compressionRatio <= 1))
-        throw UserError(toString(p.id) + ": compression_ratio must be between 0 and 1, got " +
-                        formatNumber(m.compressionRatio));
-    if (!(m.knotMass >= 0 && m.knotMass <= kMaxKnotMass))
-        throw UserError(toString(p.id) + ": knot_mass must be a number of kilograms from 0 to " +
-                        formatNumber(kMaxKnotMass) + ", got " + formatNumber(m.knotMass));
-    if (!(m.linearDensity >= 0 && m.linearDensity <= kMaxLinearDensity))
-        throw UserError(toString(p.id) + ": linear_density must be a number of kg/m from 0 to " +
-                        formatNumber(kMaxLinearDensity) + ", got " + formatNumber(m.linearDensity));
-    if (!(m.knotMass > 0 || m.linearDensity > 0))
-        throw UserError(toString(p.id) + ": knot_mass and linear_density are both 0; a net must weigh something");
+    checkMaterial(p);
     if (p.onRail()) checkRailEdge(s, p, p.railTop(), "top");
     if (p.bottom && p.rows < 2)
         throw UserError(toString(p.id) + " has 1 row, so its last row is its top row, which " +

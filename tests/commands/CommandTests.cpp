@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -52,6 +53,8 @@ std::vector<Case> everyCommand() {
     material.compressionRatio = 0.02;
     material.knotMass = 0.003;
     material.linearDensity = 0.004;
+    Material withBreakingLoad;
+    withBreakingLoad.breakingLoad = 3000;
     ImportRailsCommand import{"rails.csv", {{"a", lineRail({0, 0, 5}, {1, 0, 5})}, {"b", polygonRail(8, 0.5, 5)}}};
     return {
         {"add_rail", none, AddRailCommand{"extra", polygonRail(7, 0.7, 4)}},
@@ -81,6 +84,8 @@ std::vector<Case> everyCommand() {
         {"connect_to_rail", none, ConnectToRailCommand{PieceId(1), RailId(3), 0.25, true}},
         {"disconnect", connected, DisconnectCommand{PieceId(1)}},
         {"set_material", none, SetMaterialCommand{PieceId(1), material}},
+        {"set_material (breaking load alone)", none,
+         SetMaterialCommand{PieceId(1), withBreakingLoad}},
         {"set_colour", none, SetColourCommand{PieceId(1), Colour{0.1, 0.2, 0.3}}},
         {"rename_piece", none, RenamePieceCommand{PieceId(1), "skirt"}},
         {"remove_piece", child, RemovePieceCommand{PieceId(1)}},
@@ -473,12 +478,18 @@ TEST_CASE("every invalid input is refused with its value, leaving model, history
         std::string mentions;
     };
     const double nan = std::nan("");
+    const double inf = std::numeric_limits<double>::infinity();
     Material negativeStiffness;
     negativeStiffness.stiffness = -3;
     Material badRatio;
     badRatio.compressionRatio = 2.5;
     Material nanMass;
     nanMass.knotMass = nan;
+    const auto breakingLoad = [](double newtons) {
+        Material m;
+        m.breakingLoad = newtons;
+        return m;
+    };
     CurveSpec onePoint;
     onePoint.points = {{0, 0, 1}};
     CurveSpec nanPoint = lineRail({0, 0, 1}, {nan, 0, 1});
@@ -525,6 +536,11 @@ TEST_CASE("every invalid input is refused with its value, leaving model, history
         {SetMaterialCommand{PieceId(1), negativeStiffness}, "-3"},
         {SetMaterialCommand{PieceId(1), badRatio}, "2.5"},
         {SetMaterialCommand{PieceId(1), nanMass}, "nan"},
+        {SetMaterialCommand{PieceId(1), breakingLoad(0)},
+         "breaking_load must be a finite number of newtons above 0 (or none), got 0"},
+        {SetMaterialCommand{PieceId(1), breakingLoad(-250)}, "got -250"},
+        {SetMaterialCommand{PieceId(1), breakingLoad(nan)}, "breaking_load must be a finite"},
+        {SetMaterialCommand{PieceId(1), breakingLoad(inf)}, "got inf"},
         {SetColourCommand{PieceId(1), Colour{1.5, 0, 0}}, "1.5"},
         {SetColourCommand{PieceId(1), Colour{0, nan, 0}}, "nan"},
         {RenamePieceCommand{PieceId(1), "two\nlines"}, "two"},

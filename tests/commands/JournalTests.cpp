@@ -385,7 +385,7 @@ TEST_CASE("save writes the compacted history - saveSnapshot the model and shape"
         options.solver.maxSteps = 500; // not converged: only the shape matters here
         doc.relax(options);
         doc.saveSnapshot(dir / "snap.nets");
-        CHECK_THAT(readBytes(dir / "snap.nets"), StartsWith("netsculpt-snapshot 4\n"));
+        CHECK_THAT(readBytes(dir / "snap.nets"), StartsWith("netsculpt-snapshot 5\n"));
         std::vector<std::string> warnings;
         Document loaded = Document::load(dir / "snap.nets", &warnings);
         CHECK(warnings.empty());
@@ -397,8 +397,8 @@ TEST_CASE("save writes the compacted history - saveSnapshot the model and shape"
         CHECK(Document::load(dir / "from-snapshot.netj").hash() == hash);
         // a newer snapshot format and an inconsistent one are refused
         std::string bytes = readBytes(dir / "snap.nets");
-        writeBytes(dir / "v5.nets", "netsculpt-snapshot 5" + bytes.substr(bytes.find('\n')));
-        CHECK_THROWS_WITH(Document::load(dir / "v5.nets"), Contains("snapshot format 5 is newer"));
+        writeBytes(dir / "v6.nets", "netsculpt-snapshot 6" + bytes.substr(bytes.find('\n')));
+        CHECK_THROWS_WITH(Document::load(dir / "v6.nets"), Contains("snapshot format 6 is newer"));
         const std::size_t at = bytes.find("\"next_piece_id\":") + 16;
         bytes[at] = bytes[at] == '9' ? '8' : '9';
         writeBytes(dir / "bad.nets", bytes);

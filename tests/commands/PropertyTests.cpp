@@ -5,6 +5,7 @@
 #include "CommandTestSupport.h"
 
 #include <chrono>
+#include <limits>
 #include <map>
 #include <random>
 
@@ -155,6 +156,9 @@ class RandomEditor {
             m.compressionRatio = oneOf<double>({0.01, 0.5, 0.0, 1.5});
             m.knotMass = oneOf<double>({0.002, 0, 0.01, -0.1});
             m.linearDensity = oneOf<double>({0.006, 0, 0.02});
+            const double inf = std::numeric_limits<double>::infinity();
+            if (chance(0.5))
+                m.breakingLoad = oneOf<double>({3000, 450.5, 0, -2, inf});
             a.command = SetMaterialCommand{piece(s), m};
             break;
         }
