@@ -180,12 +180,33 @@ int w_disconnect(Call& call) {
     return 0;
 }
 
-/// doc:set_material{piece, stiffness, compression_ratio, knot_mass, linear_density}: the fields
-/// not given keep their current values.
+/// The breaking_load of set_material: a finite number of newtons > 0, false for none, or the
+/// fallback when not given.
+std::optional<double> breakingLoadArg(const TableArgs& args, std::optional<double> fallback) {
+    const Call& call = args.call();
+    const int at = args.push("breaking_load");
+    std::optional<double> value = fallback;
+    if (lua_type(call.L, at) == LUA_TBOOLEAN && !lua_toboolean(call.L, at)) {
+        value = std::nullopt;
+    } else if (!lua_isnil(call.L, at)) {
+        const double newtons = lua_tonumber(call.L, at);
+        if (lua_type(call.L, at) != LUA_TNUMBER || !(newtons > 0) || !std::isfinite(newtons))
+            call.bad("breaking_load", at,
+                     "a finite number of newtons > 0 (a knotted bar's breaking load), or false "
+                     "for none");
+        value = newtons;
+    }
+    args.pop();
+    return value;
+}
+
+/// doc:set_material{piece, stiffness, compression_ratio, knot_mass, linear_density,
+/// breaking_load}: the fields not given keep their current values.
 int w_set_material(Call& call) {
     Document& doc = checkDocument(call);
-    const TableArgs args(
-        call, 2, {"piece", "stiffness", "compression_ratio", "knot_mass", "linear_density"});
+    const TableArgs args(call, 2,
+                         {"piece", "stiffness", "compression_ratio", "knot_mass", "linear_density",
+                          "breaking_load"});
     const PieceId piece = pieceArg(args, "piece");
     Material m = doc.sculpture().piece(piece).material;
     m.stiffness = args.positive("stiffness", m.stiffness);
@@ -195,6 +216,7 @@ int w_set_material(Call& call) {
                   formatNumber(m.compressionRatio));
     m.knotMass = nonNegative(args, "knot_mass", m.knotMass);
     m.linearDensity = nonNegative(args, "linear_density", m.linearDensity);
+    m.breakingLoad = breakingLoadArg(args, m.breakingLoad);
     doc.execute(SetMaterialCommand{piece, m});
     return 0;
 }

@@ -21,12 +21,15 @@ void pushColour(lua_State* L, const Colour& c) {
     }
 }
 
+/// The material as set_material takes it; breaking_load nil when the piece has none.
 void pushMaterial(lua_State* L, const Material& m) {
-    lua_createtable(L, 0, 4);
+    lua_createtable(L, 0, 5);
     setNumber(L, "stiffness", m.stiffness);
     setNumber(L, "compression_ratio", m.compressionRatio);
     setNumber(L, "knot_mass", m.knotMass);
     setNumber(L, "linear_density", m.linearDensity);
+    if (m.breakingLoad)
+        setNumber(L, "breaking_load", *m.breakingLoad);
 }
 
 void pushRailEdge(lua_State* L, int docIndex, const RailEdge& e) {

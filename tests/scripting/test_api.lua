@@ -196,6 +196,15 @@ T.case("edits: material, colour, rename, connect, gravity", function()
   doc:set_material{piece = p, stiffness = 500, knot_mass = 0.004}
   local m = p:info().material
   T.eq(m.stiffness, 500); T.eq(m.knot_mass, 0.004); T.eq(m.compression_ratio, 0.01) -- kept
+  T.eq(m.breaking_load, nil) -- none unless given: there is no default strength
+  doc:set_material{piece = p, breaking_load = 2500}
+  T.eq(p:info().material.breaking_load, 2500); T.eq(p:info().material.stiffness, 500)
+  doc:set_material{piece = p, knot_mass = 0.003}
+  T.eq(p:info().material.breaking_load, 2500) -- kept by a call that does not name it
+  doc:set_material{piece = p, breaking_load = false}
+  T.eq(p:info().material.breaking_load, nil)
+  doc:undo()
+  T.eq(p:info().material.breaking_load, 2500)
   doc:set_colour{piece = p, colour = {0.1, 0.2, 0.3}}
   T.eq(p:info().colour[3], 0.3)
   doc:rename{piece = p, name = "tube"}

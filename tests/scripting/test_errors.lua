@@ -55,6 +55,33 @@ T.case("numbers and lengths", function()
         "set_colour: argument 'colour'", "from 0 to 1, got 2")
 end)
 
+T.case("a breaking load is a number of newtons > 0 or false; a bad one keeps the journal",
+       function()
+  local function bytes(path)
+    local file = assert(io.open(path, "rb"))
+    local text = file:read("a")
+    file:close()
+    return text
+  end
+  local journal = bytes(doc:save("errors/before.netj"))
+  local expected = "set_material: argument 'breaking_load' must be a finite number of newtons > 0 "
+                   .. "(a knotted bar's breaking load), or false for none, got "
+  fails(here(), function() doc:set_material{piece = p, breaking_load = 0} end, expected .. "0")
+  fails(here(), function() doc:set_material{piece = p, breaking_load = -3000} end,
+        expected .. "-3000")
+  fails(here(), function() doc:set_material{piece = p, breaking_load = 0 / 0} end,
+        expected .. "nan")
+  fails(here(), function() doc:set_material{piece = p, breaking_load = math.huge} end,
+        expected .. "inf")
+  fails(here(), function() doc:set_material{piece = p, breaking_load = "3000"} end,
+        expected .. "\"3000\"")
+  fails(here(), function() doc:set_material{piece = p, breaking_load = true} end,
+        expected .. "true")
+  fails(here(), function() doc:set_material{piece = p, stiffness = 100, breaking_load = 0} end,
+        expected .. "0") -- the other fields are not set either
+  T.eq(bytes(doc:save("errors/after.netj")), journal)
+end)
+
 T.case("rail positions outside the rail", function()
   fails(here(), function() doc:attach_to_rail{rail = ring, columns = 12, rows = 3, at = 1.5} end,
         "attach_to_rail: rail position 'at' on rail 1 (ring) must be from 0 to 1", "got 1.5")
