@@ -3,6 +3,7 @@
 
 #include "io/Report.h"
 
+#include "io/ReportSections.h"
 #include "io/Scene.h"
 #include "physics/Forces.h"
 
@@ -10,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace netsculpt {
 
@@ -120,12 +122,16 @@ json pieceReport(const Sculpture& s, const CompiledSculpture& c, const Piece& p,
     const MassSpringSystem& sys = c.system;
     std::size_t bars = 0, ownedKnots = 0;
     double rope = 0, ropeMass = 0, maxTension = 0;
+    std::optional<std::size_t> strongest; // the bar of the largest tension, if one is in tension
     for (std::size_t b = 0; b < sys.barCount(); ++b)
         if (sys.barPiece[b] == p.id) {
             ++bars;
             rope += sys.restLength[b];
             ropeMass += sys.linearDensity[b] * sys.restLength[b];
-            maxTension = std::max(maxTension, tension[b]);
+            if (tension[b] > maxTension) {
+                maxTension = tension[b];
+                strongest = b;
+            }
         }
     for (std::size_t k = 0; k < sys.knotCount(); ++k)
         if (sys.refs[sys.refStart[k]].piece == p.id)
@@ -139,6 +145,7 @@ json pieceReport(const Sculpture& s, const CompiledSculpture& c, const Piece& p,
         if (seam.left == p.id || seam.right == p.id)
             seams.push_back(seamReport(s, sys, seam, p.id));
     const Material& m = p.material;
+    const json strength = pieceStrength(m, maxTension);
     return {{"id", p.id.value},
             {"name", p.name},
             {"rows", p.rows},
@@ -153,11 +160,16 @@ json pieceReport(const Sculpture& s, const CompiledSculpture& c, const Piece& p,
             {"bar_lengths", lengths},
             {"bar_lengths_between_rows", lengthsBetweenRows(p)},
             {"max_tension", maxTension},
+            {"max_tension_at", strongest ? barAt(sys, *strongest) : json(nullptr)},
+            {"breaking_load", strength["breaking_load"]},
+            {"utilisation", strength["utilisation"]},
+            {"safety_factor", strength["safety_factor"]},
             {"material",
              {{"stiffness", m.stiffness},
               {"compression_ratio", m.compressionRatio},
               {"knot_mass", m.knotMass},
-              {"linear_density", m.linearDensity}}},
+              {"linear_density", m.linearDensity},
+              {"breaking_load", m.breakingLoad ? json(*m.breakingLoad) : json(nullptr)}}},
             {"colour", {p.colour.r, p.colour.g, p.colour.b}},
             {"top", pieceTop(s, p)},
             {"bottom", p.bottom ? railEdge(s, *p.bottom) : json(nullptr)},
@@ -237,6 +249,7 @@ nlohmann::json buildReport(const Sculpture& s, const CompiledSculpture& c,
                        {"mass", "kg"},
                        {"force", "N"},
                        {"strain", "fraction of the rest length (0.01 = 1 %)"},
+                       {"utilisation", "fraction of the breaking load (0.25 = 25 %)"},
                        {"axes", "the sculpture's, z up"},
                        {"reaction",
                         "the force a rail exerts on the net; its load is the opposite"}};
@@ -360,6 +373,7 @@ nlohmann::json buildReport(const Sculpture& s, const CompiledSculpture& c,
     json pieces = json::array();
     for (const auto& [id, piece] : s.pieces)
         pieces.push_back(pieceReport(s, c, piece, tension));
+    report.update(strengthSummary(pieces));
     report["pieces"] = std::move(pieces);
     report["rails"] = std::move(rails);
     return report;

@@ -17,7 +17,10 @@
 //   start stretches open edges' bars by up to tens of per cent), force_balance {reaction_sum, expected (= -total
 //   mass x gravity), difference, relative_difference (|difference| / total_weight), tolerance,
 //   within_tolerance, relaxed, note}. Without a converged relaxation the balance is not expected to
-//   hold.
+//   hold. min_safety_factor (the least safety_factor over the pieces that have a breaking load;
+//   null when none has one, or none of theirs has a bar in tension), min_safety_factor_at (that
+//   piece's max_tension_at: the bar, with its piece), pieces_without_breaking_load [ids] (pieces
+//   whose strength is not checked: no strength is assumed for them).
 //   pieces[]: id, name, rows, columns, closed, knots (rows x columns: its own grid, shared
 //   knots counted in every piece holding them), knots_tied (the knots it owns: a shared knot is
 //   tied once, in the first piece that holds it; they sum to `knots`), bars (the bars the piece
@@ -26,8 +29,13 @@
 //   sum to total_mass), bar_axis ("column" or "row"), bar_lengths[] (per column or per row),
 //   bar_lengths_between_rows[] (a piece whose length varies by row: the length of every bar
 //   between rows r and r + 1, as it is knotted; empty otherwise), max_tension (the largest
-//   tension of its bars, 0 when none is stretched),
-//   material {stiffness, compression_ratio, knot_mass, linear_density}, colour [r, g, b],
+//   tension of its bars, 0 when none is stretched), max_tension_at (that bar, as max_tension_at
+//   above; null when none is stretched), breaking_load (N, the material's: a bar's as knotted;
+//   null when it has none), utilisation (max_tension / breaking_load, a fraction; null without
+//   a breaking load), safety_factor (breaking_load / max_tension; null without a breaking load
+//   or without a bar in tension),
+//   material {stiffness, compression_ratio, knot_mass, linear_density, breaking_load (null when
+//   none)}, colour [r, g, b],
 //   top {kind "rail": rail, rail_name, at, step, offset, reverse, start, start_along | kind
 //   "piece": parents[], gear, gear_value, offset, ring} (offset: the column of the rail's or the
 //   parents' row where the piece's column 0 is; start: the rail position of column 0, in [0, 1)
@@ -93,7 +101,9 @@ std::string reportMarkdown(const nlohmann::json& report);
 /// Per-piece table as CSV (id, name, rows, columns, closed, knots, bars, rope_length, mass,
 /// bar_axis, bar_min, bar_max, bar_first, bar_last: the knotted lengths at the first and the last
 /// column, or between the first and the last two rows; max_tension; top and last_row: where the
-/// piece hangs from and where its last row is tied, "free" when nowhere, as the Markdown says).
+/// piece hangs from and where its last row is tied, "free" when nowhere, as the Markdown says;
+/// knots_tied; breaking_load, utilisation, safety_factor, max_tension_at ("row 0 column 3 to
+/// row 1 column 3"): empty where the JSON has null).
 std::string reportPiecesCsv(const nlohmann::json& report);
 /// Per-attachment-point table as CSV (rail, piece, row, column, t, x, y, z: where the point is in
 /// the sculpture's coordinates, m; fx, fy, fz: the reaction, N, the force the rail exerts on the

@@ -23,6 +23,19 @@ std::string g6(double value) {
     return text;
 }
 
+std::string markdownCell(const std::string& text) {
+    std::string out;
+    for (char c : text)
+        out += c == '|' ? std::string("\\|") : std::string(1, c);
+    return out;
+}
+
+std::string barPlaceText(const nlohmann::json& at) {
+    const auto integer = [](const nlohmann::json& v) { return std::to_string(v.get<long long>()); };
+    return "row " + integer(at["a"]["row"]) + " column " + integer(at["a"]["column"]) + " to row " +
+           integer(at["b"]["row"]) + " column " + integer(at["b"]["column"]);
+}
+
 namespace {
 
 using netsculpt::g6; // beside the JSON overload below, so that a double finds the double one
@@ -51,13 +64,6 @@ std::string placeText(const json& v) {
                        metres(v["z"].get<double>()), ")"});
 }
 
-std::string cell(const std::string& text) {
-    std::string out;
-    for (char c : text)
-        out += c == '|' ? std::string("\\|") : std::string(1, c);
-    return out;
-}
-
 std::string csvField(const std::string& text) {
     if (text.find_first_of(",\"\n\r") == std::string::npos)
         return text;
@@ -74,9 +80,7 @@ std::string num(const json& v) {
 
 /// "piece P, row R column C to row R' column C'" for a max_tension_at / max_strain_at entry.
 std::string barText(const json& at) {
-    return "piece " + num(at["piece"]) + ", row " + num(at["a"]["row"]) + " column " +
-           num(at["a"]["column"]) + " to row " + num(at["b"]["row"]) + " column " +
-           num(at["b"]["column"]);
+    return "piece " + num(at["piece"]) + ", " + barPlaceText(at);
 }
 
 /// Where an edge on a rail starts: "rail 1 (crown), from 10.0000 m along it (t = 0.333)", and
@@ -148,13 +152,13 @@ std::string piecesMarkdown(const json& r) {
         "| bar length (m) | largest tension (N) | top | last row | seams |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const json& p : r["pieces"])
-        md += "| " + num(p["id"]) + " | " + cell(p["name"].get<std::string>()) + " | " +
+        md += "| " + num(p["id"]) + " | " + markdownCell(p["name"].get<std::string>()) + " | " +
               num(p["rows"]) + " x " + num(p["columns"]) + " | " +
               (p["closed"].get<bool>() ? "yes" : "no") + " | " + num(p["knots"]) + " | " +
               num(p["knots_tied"]) + " | " + num(p["bars"]) + " | " + g6(p["rope_length"]) + " | " +
               g6(p["mass"]) + " | " + barLengthText(p) + " | " + g6(p["max_tension"]) + " | " +
-              cell(topText(p["top"])) + " | " +
-              cell(p["bottom"].is_null() ? "free" : railEdgeText(p["bottom"])) + " | " +
+              markdownCell(topText(p["top"])) + " | " +
+              markdownCell(p["bottom"].is_null() ? "free" : railEdgeText(p["bottom"])) + " | " +
               seamsText(p["seams"]) + " |\n";
     return md;
 }
@@ -179,9 +183,9 @@ std::string railsMarkdown(const json& r) {
         "| id | name | length (m) | closed | attachments | reaction sum (N) | largest reaction "
         "(N) | largest load at a point (N) |\n|---|---|---|---|---|---|---|---|\n";
     for (const json& rail : r["rails"])
-        md += "| " + num(rail["id"]) + " | " + cell(rail["name"].get<std::string>()) + " | " +
-              g6(rail["length"]) + " | " + (rail["closed"].get<bool>() ? "yes" : "no") + " | " +
-              num(rail["attachments"]) + " | " + vecText(rail["reaction"]) + " | " +
+        md += "| " + num(rail["id"]) + " | " + markdownCell(rail["name"].get<std::string>()) +
+              " | " + g6(rail["length"]) + " | " + (rail["closed"].get<bool>() ? "yes" : "no") +
+              " | " + num(rail["attachments"]) + " | " + vecText(rail["reaction"]) + " | " +
               g6(rail["max_reaction"]) + " | " + pointLoadText(rail) + " |\n";
     return md;
 }
@@ -192,7 +196,8 @@ std::string attachmentsMarkdown(const json& r) {
     for (const json& rail : r["rails"]) {
         if (rail["points"].empty())
             continue;
-        md += "\n### Rail " + num(rail["id"]) + " (" + cell(rail["name"].get<std::string>()) +
+        md += "\n### Rail " + num(rail["id"]) + " (" +
+              markdownCell(rail["name"].get<std::string>()) +
               ")\n\n| piece | row | column | t | along the rail (m) | position (m) | reaction (N) "
               "| magnitude (N) |\n|---|---|---|---|---|---|---|---|\n";
         for (const json& p : rail["points"])
@@ -202,6 +207,15 @@ std::string attachmentsMarkdown(const json& r) {
                   g6(p["magnitude"]) + " |\n";
     }
     return md;
+}
+
+/// "breaking_load,utilisation,safety_factor,max_tension_at": a field is empty where the report
+/// has null (no breaking load; no bar in tension).
+std::string strengthCsv(const json& p) {
+    const auto optional = [](const json& v) { return v.is_null() ? std::string() : num(v); };
+    return optional(p["breaking_load"]) + "," + optional(p["utilisation"]) + "," +
+           optional(p["safety_factor"]) + "," +
+           (p["max_tension_at"].is_null() ? std::string() : barPlaceText(p["max_tension_at"]));
 }
 
 } // namespace
@@ -241,7 +255,7 @@ std::string reportMarkdown(const json& r) {
     md += " |\n| largest strain | " + g6(100 * r["max_strain"].get<double>()) + " %";
     if (!r["max_strain_at"].is_null())
         md += " (" + barText(r["max_strain_at"]) + ")";
-    md += " |\n| slack bars | " + num(r["slack_bars"]) + " |\n\n";
+    md += " |\n| slack bars | " + num(r["slack_bars"]) + " |\n" + strengthSummaryMarkdown(r) + "\n";
     const bool settled =
         r["relaxed"].get<bool>() || r["residual"].get<double>() <= kSettledResidual;
     if (settled && r["overstretched_bars"].get<std::size_t>() > 0)
@@ -265,14 +279,15 @@ std::string reportMarkdown(const json& r) {
           (fb["within_tolerance"].get<bool>() ? "within" : "**not within**") + " the tolerance " +
           g6(fb["tolerance"]) + ". " + fb["note"].get<std::string>() + ".\n\n";
 
-    return md + piecesMarkdown(r) + joinsMarkdown(r) + barLengthsMarkdown(r) + railsMarkdown(r) +
-           attachmentsMarkdown(r);
+    return md + piecesMarkdown(r) + strengthMarkdown(r) + joinsMarkdown(r) + barLengthsMarkdown(r) +
+           railsMarkdown(r) + attachmentsMarkdown(r);
 }
 
 std::string reportPiecesCsv(const json& r) {
     std::string csv =
         "id,name,rows,columns,closed,knots,bars,rope_length,mass,bar_axis,bar_min,bar_max,"
-        "bar_first,bar_last,max_tension,top,last_row,knots_tied\n";
+        "bar_first,bar_last,max_tension,top,last_row,knots_tied,breaking_load,utilisation,"
+        "safety_factor,max_tension_at\n";
     for (const json& p : r["pieces"]) {
         double lo = 0, hi = 0;
         bool first = true;
@@ -289,7 +304,7 @@ std::string reportPiecesCsv(const json& r) {
                "," + io::numberText(hi) + "," + knottedEnds(p) + "," + num(p["max_tension"]) + "," +
                csvField(topText(p["top"])) + "," +
                csvField(p["bottom"].is_null() ? "free" : railEdgeText(p["bottom"])) + "," +
-               num(p["knots_tied"]) + "\n";
+               num(p["knots_tied"]) + "," + strengthCsv(p) + "\n";
     }
     return csv;
 }

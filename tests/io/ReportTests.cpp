@@ -214,12 +214,13 @@ TEST_CASE("report as Markdown and CSV tables") {
 
     const std::string pieces = reportPiecesCsv(r);
     CHECK(pieces.rfind("id,name,rows,columns,closed,knots,bars,rope_length,mass,bar_axis,bar_min,"
-                       "bar_max,bar_first,bar_last,max_tension,top,last_row,knots_tied\n",
+                       "bar_max,bar_first,bar_last,max_tension,top,last_row,knots_tied,"
+                       "breaking_load,utilisation,safety_factor,max_tension_at\n",
                        0) == 0);
     CHECK(lineCount(pieces) == 2);
     CHECK_THAT(pieces, Contains("\n1,piece 1,4,3,0,12,15,"));
     CHECK_THAT(pieces, Contains(",column,0.3,0.3,0.3,0.3,"));
-    CHECK_THAT(pieces, Contains(",\"rail 1 (bar), from 0.0000 m along it (t = 0)\",free,12\n"));
+    CHECK_THAT(pieces, Contains(",\"rail 1 (bar), from 0.0000 m along it (t = 0)\",free,12,"));
     const std::string points = reportAttachmentsCsv(r);
     CHECK(points.rfind("rail,piece,row,column,t,x,y,z,fx,fy,fz,magnitude,along\n", 0) == 0);
     CHECK(lineCount(points) == 1 + 3);

@@ -361,6 +361,34 @@ T.case("relax, export, report, save and open", function()
   T.eq(ns.open("api/design.nets"):hash(), snap:hash())
 end)
 
+T.case("the report checks each piece's largest tension against its breaking load", function()
+  local doc = ns.new()
+  local ring = doc:add_rail{points = T.circle(2, 5, 48), closed = true}
+  local p = doc:attach_to_rail{rail = ring, columns = 24, rows = 4, bar = 0.4}
+  local q = doc:attach_to_piece{piece = p, gear = 2, rows = 3, bar = 0.3}
+  T.eq(doc:relax{max_seconds = 10}.converged, true)
+  local none = doc:report()
+  T.eq(none.min_safety_factor, nil); T.eq(none.min_safety_factor_at, nil)
+  T.eq(#none.pieces_without_breaking_load, 2)
+  T.eq(none.pieces[1].breaking_load, nil)
+  T.eq(none.pieces[1].utilisation, nil); T.eq(none.pieces[1].safety_factor, nil)
+
+  doc:set_material{piece = p, breaking_load = 40}
+  local r = doc:report()
+  local top = r.pieces[1]
+  T.eq(top.id, p.id); T.eq(top.breaking_load, 40); T.eq(top.material.breaking_load, 40)
+  T.check(top.max_tension > 0, "the tube carries the skirt")
+  T.eq(top.utilisation, top.max_tension / 40)
+  T.eq(top.safety_factor, 40 / top.max_tension)
+  T.eq(top.max_tension_at.piece, p.id)
+  T.eq(r.min_safety_factor, top.safety_factor)
+  T.eq(r.min_safety_factor_at.piece, p.id)
+  T.eq(#r.pieces_without_breaking_load, 1); T.eq(r.pieces_without_breaking_load[1], q.id)
+  T.eq(r.pieces[2].safety_factor, nil) -- the skirt is not checked
+  local md = io.open(doc:write_report("api/strength.md")):read("a")
+  T.check(md:find("| pieces without a breaking load | 2 (piece 2): not checked |", 1, true), md)
+end)
+
 T.case("the script's folder is the folder of the script, under netsculpt run and stock lua5.4",
        function()
   T.eq(ns.script_dir(), arg[0]:match("^(.*)/[^/]*$"))

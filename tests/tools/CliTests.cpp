@@ -9,10 +9,13 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <cstdio>
 #include <fcntl.h>
 #include <fstream>
+#include <sstream>
 #include <sys/file.h>
 #include <unistd.h>
+#include <vector>
 
 using namespace netsculpt::test;
 using Catch::Matchers::Contains;
@@ -27,7 +30,7 @@ local pts = {}
 for i = 0, 47 do local a = 2 * math.pi * i / 48; pts[#pts + 1] = {2 * math.cos(a), 2 * math.sin(a), 5} end
 local ring = doc:add_rail{name = "ring", points = pts, closed = true}
 local p = doc:attach_to_rail{rail = ring, columns = 24, rows = 4, bar = 0.4}
-doc:set_material{piece = p, stiffness = 100}
+doc:set_material{piece = p, stiffness = 100, breaking_load = 40}
 local q = doc:attach_to_piece{piece = p, gear = 2, rows = 3, bar = 0.3}
 doc:set_material{piece = q, stiffness = 100}
 doc:set_rows{piece = q, rows = 5}
@@ -553,4 +556,77 @@ print("overstretched", doc:relax{}.overstretched_bars)
     CHECK_THAT(ran.output, Contains("overstretched\t42") &&
                                Contains("netsculpt: warning: after doc:relax, 42 bars are "
                                         "stretched by more than 2 %"));
+}
+
+TEST_CASE("report: each piece's breaking load, utilisation and safety factor in Markdown, JSON "
+          "and CSV, and the pieces without one named",
+          "[cli]") {
+    // kSmallSculpture: piece 1 (the tube) has a breaking load of 40 N, piece 2 (below) none.
+    const fs::path dir = freshFolder("cli-strength");
+    const fs::path script = writeScript(dir, "small.lua", kSmallSculpture);
+    REQUIRE(runCli("run " + quoted(script) + " --out " + quoted(dir) + " -q").exitCode == 0);
+    REQUIRE(
+        runCli("relax " + quoted(dir / "small.netj") + " -q --out " + quoted(dir / "r")).exitCode ==
+        0);
+    const fs::path snapshot = dir / "r" / "small.nets";
+
+    const Ran json = runCli("report " + quoted(snapshot) + " --json");
+    REQUIRE(json.exitCode == 0);
+    const nlohmann::json r = nlohmann::json::parse(json.output);
+    const nlohmann::json& tube = r["pieces"][0];
+    const nlohmann::json& skirt = r["pieces"][1];
+    const double tension = tube["max_tension"].get<double>();
+    CHECK(tension > 0);
+    CHECK(tube["breaking_load"].get<double>() == 40);
+    CHECK(tube["utilisation"].get<double>() == tension / 40);
+    CHECK(tube["safety_factor"].get<double>() == 40 / tension);
+    CHECK(tube["max_tension_at"]["piece"] == 1);
+    CHECK(skirt["breaking_load"].is_null());
+    CHECK(skirt["utilisation"].is_null());
+    CHECK(skirt["safety_factor"].is_null());
+    CHECK(r["min_safety_factor"] == tube["safety_factor"]);
+    CHECK(r["min_safety_factor_at"] == tube["max_tension_at"]);
+    CHECK(r["pieces_without_breaking_load"] == nlohmann::json::array({2}));
+
+    const Ran markdown = runCli("report " + quoted(snapshot));
+    REQUIRE(markdown.exitCode == 0);
+    char factor[32];
+    std::snprintf(factor, sizeof factor, "%.6g", 40 / tension);
+    CHECK_THAT(markdown.output,
+               Contains("| least safety factor | " + std::string(factor) + " (piece 1, row ") &&
+                   Contains("| pieces without a breaking load | 2 (piece 2): "
+                            "not checked |") &&
+                   Contains("\n## Strength\n") && Contains("\n| 2 | piece 2 | none | "));
+
+    // The pieces table's last four columns, each read back to the JSON's number.
+    const Ran csv = runCli("report " + quoted(snapshot) + " --csv");
+    REQUIRE(csv.exitCode == 0);
+    std::istringstream lines(csv.output);
+    std::string header, first, second;
+    std::getline(lines, header);
+    std::getline(lines, first);
+    std::getline(lines, second);
+    CHECK_THAT(header, Contains(",knots_tied,breaking_load,utilisation,safety_factor,"
+                                "max_tension_at") &&
+                           !Contains("max_tension_at,"));
+    const auto lastFields = [](const std::string& line) {
+        std::vector<std::string> fields;
+        std::string::size_type end = line.size();
+        for (int i = 0; i < 4; ++i) {
+            const std::string::size_type comma = line.rfind(',', end - 1);
+            fields.insert(fields.begin(), line.substr(comma + 1, end - comma - 1));
+            end = comma;
+        }
+        return fields; // breaking_load, utilisation, safety_factor, max_tension_at
+    };
+    const std::vector<std::string> tubeFields = lastFields(first);
+    CHECK(std::stod(tubeFields[0]) == 40);
+    CHECK(std::stod(tubeFields[1]) == tube["utilisation"].get<double>());
+    CHECK(std::stod(tubeFields[2]) == tube["safety_factor"].get<double>());
+    CHECK_THAT(tubeFields[3], StartsWith("row "));
+    const std::vector<std::string> skirtFields = lastFields(second);
+    CHECK(skirtFields[0].empty());
+    CHECK(skirtFields[1].empty());
+    CHECK(skirtFields[2].empty());
+    CHECK_THAT(skirtFields[3], StartsWith("row "));
 }
