@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 namespace netsculpt::studio {
 
@@ -41,6 +42,45 @@ std::string edgeLabel(const Sculpture& s, const RailEdge& edge) {
     char at[32];
     std::snprintf(at, sizeof at, " at t = %.4g", t);
     return railLabel(s, edge.rail) + at;
+}
+
+/// A field for an optional number, blank for none (a breaking load): true and `out` when Enter
+/// asks for another value; text that is not a number is said on the status line.
+bool editOptional(App& app, const char* label, std::optional<double> value,
+                  std::optional<double>& out, const char* format = "%.4g") {
+    out = value;
+    char shown[48] = "";
+    if (value)
+        std::snprintf(shown, sizeof shown, format, *value);
+    std::string text = shown;
+    if (!ImGui::InputTextWithHint(label, "none", &text, kOnEnter))
+        return false;
+    const TypedOptional typed = readOptional(text, value, format);
+    if (!typed.error.empty())
+        app.notify(std::string(label) + ": " + typed.error, true);
+    if (!typed.edit)
+        return false;
+    out = typed.value;
+    return true;
+}
+
+/// The least safety factor over the pieces with a breaking load, and how many have none.
+void drawStrength(const nlohmann::json& r) {
+    const nlohmann::json least = r.value("min_safety_factor", nlohmann::json());
+    if (least.is_number()) {
+        const double factor = least.get<double>();
+        const int piece = r["min_safety_factor_at"].value("piece", 0);
+        if (factor < 1)
+            ImGui::TextColored(ImVec4(0.95f, 0.45f, 0.3f, 1),
+                               "safety factor %.3g (piece %d): below 1", factor, piece);
+        else
+            ImGui::Text("least safety factor %.3g (piece %d)", factor, piece);
+    }
+    const std::size_t unchecked =
+        r.value("pieces_without_breaking_load", nlohmann::json::array()).size();
+    if (unchecked > 0)
+        ImGui::TextDisabled("%zu piece%s without a breaking load: not checked", unchecked,
+                            unchecked == 1 ? "" : "s");
 }
 
 double magnitude(const nlohmann::json& v) {
@@ -140,6 +180,10 @@ void Panels::drawPiece(App& app, PieceId id) {
         editDouble("compression ratio", before.compressionRatio, m.compressionRatio);
         editDouble("knot mass (kg)", before.knotMass, m.knotMass);
         editDouble("rope (kg/m)", before.linearDensity, m.linearDensity);
+        editOptional(app, "breaking load (N)", before.breakingLoad, m.breakingLoad);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("The load at which a bar breaks, as knotted (with the knots' loss of "
+                              "strength).\nBlank: none, and the report checks no strength.");
         if (!(m == before)) ui.execute(SetMaterialCommand{id, m});
         ImGui::TreePop();
     }
@@ -193,6 +237,7 @@ void Panels::drawReport(App& app) {
         ImGui::Text("rope length   %.2f m", r.value("rope_length", 0.0));
         ImGui::Text("mass          %.3f kg", r.value("total_mass", 0.0));
         ImGui::Text("max tension   %.2f N", r.value("max_tension", 0.0));
+        drawStrength(r);
         double load = 0;
         std::string where = "-";
         for (const auto& rail : r.value("rails", nlohmann::json::array())) {
