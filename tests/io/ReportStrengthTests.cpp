@@ -119,7 +119,7 @@ TEST_CASE("a two-bar hanger's tension, utilisation and safety factor agree with 
 }
 
 TEST_CASE("per piece, the safety factor is the breaking load over the largest tension recomputed "
-          "from the bars; pieces without one are named and not checked") {
+          "from the bars - pieces without one are named and not checked") {
     // A tube with a skirt geared x2 below it, in soft rope, relaxed. Only the tube has a
     // breaking load.
     Document doc;
