@@ -171,6 +171,13 @@ TEST_CASE("site.lua: a net in a surveyor's coordinates relaxes, and its files ke
     REQUIRE(report["relaxed"] == true);
     checkHangsAsRope(report);
     CHECK(report["force_balance"]["relative_difference"].get<double>() < 1e-9);
+    // The sheet's rope is checked against the breaking load the script gives it.
+    const json& sheet = report["pieces"][0];
+    REQUIRE(sheet["breaking_load"] == 2200.0);
+    const double tension = sheet["max_tension"].get<double>();
+    CHECK(tension > 1); // the net weighs 81 N and hangs from 80 knots
+    CHECK(report["min_safety_factor"].get<double>() == Approx(2200 / tension).epsilon(1e-12));
+    CHECK(report["pieces_without_breaking_load"].empty());
     // Where the loads act: the upper beam's attachments 8 m above the ground, along the beam.
     const json& upper = report["rails"][0];
     REQUIRE(upper["points"].size() == 40);
