@@ -5,7 +5,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <stdexcept>
 #include <string>
 
 namespace netsculpt {
@@ -14,26 +13,15 @@ namespace {
 
 using nlohmann::json;
 
-std::string integer(const json& v) {
-    return std::to_string(v.get<long long>());
-}
-
-const json& pieceOf(const json& report, const json& id) {
-    for (const json& p : report["pieces"])
-        if (p["id"] == id)
-            return p;
-    throw std::logic_error("report: no piece " + integer(id));
-}
-
 /// "piece 1 (tube)", or "pieces 1 (a), 4 (b) and 3 (c), taken in that order as one row".
 std::string parentsText(const json& report, const json& parents) {
     std::string text = parents.size() == 1 ? "piece " : "pieces ";
     for (std::size_t i = 0; i < parents.size(); ++i) {
-        const json& parent = pieceOf(report, parents[i]);
+        const json& parent = reportPiece(report, parents[i]);
         text += (i == 0                    ? ""
                  : i + 1 == parents.size() ? " and "
                                            : ", ") +
-                integer(parent["id"]) + " (" + parent["name"].get<std::string>() + ")";
+                integerText(parent["id"]) + " (" + parent["name"].get<std::string>() + ")";
     }
     return parents.size() == 1 ? text : text + ", taken in that order as one row";
 }
@@ -43,7 +31,7 @@ std::string parentsText(const json& report, const json& parents) {
 int joinedKnots(const json& report, const json& parents, bool ring) {
     int knots = 0;
     for (const json& id : parents)
-        knots += pieceOf(report, id)["columns"].get<int>();
+        knots += reportPiece(report, id)["columns"].get<int>();
     return knots - int(parents.size()) + (ring ? 0 : 1);
 }
 
@@ -56,11 +44,11 @@ std::string parentKnot(const json& report, const json& parents, const std::strin
         return "knot " + column + " of that joined row (" +
                std::to_string(joinedKnots(report, parents, ring)) +
                " knots from the first part's column 0, a seam knot counted once" + wrap + ")";
-    const json& parent = pieceOf(report, parents[0]);
+    const json& parent = reportPiece(report, parents[0]);
     // Only an offset ("c + 4") can count past the last column.
     const bool offset = column.find('+') != std::string::npos;
     return "knot (" + std::to_string(parent["rows"].get<int>() - 1) + ", " + column +
-           ") of piece " + integer(parent["id"]) +
+           ") of piece " + integerText(parent["id"]) +
            (ring && offset ? " (" + wrap.substr(2) + ")" : "");
 }
 
@@ -79,7 +67,7 @@ std::string scaled(const std::string& column, const std::string& before, const s
 std::string gearText(const json& report, const json& piece) {
     const json& top = piece["top"];
     const json& parents = top["parents"];
-    const std::string id = integer(piece["id"]), column = columnText(top["offset"].get<int>());
+    const std::string id = integerText(piece["id"]), column = columnText(top["offset"].get<int>());
     const double gear = top["gear_value"].get<double>();
     const bool ring = top["ring"].get<bool>();
     if (gear == 1)
@@ -107,7 +95,7 @@ std::string gearText(const json& report, const json& piece) {
 
 std::string addedRowsText(const json& piece) {
     const int rows = piece["rows"].get<int>();
-    const std::string tied = integer(piece["knots_tied"]) + " knots tied";
+    const std::string tied = integerText(piece["knots_tied"]) + " knots tied";
     if (rows == 1)
         return " It adds no row below (" + tied + ").";
     return " It adds rows 1 to " + std::to_string(rows - 1) + " below (" + tied + ").";
@@ -155,7 +143,7 @@ std::string joinsMarkdown(const json& report) {
         const json& top = piece["top"];
         if (top["kind"] != "piece")
             continue;
-        md += "- Piece " + integer(piece["id"]) + " (" + piece["name"].get<std::string>() +
+        md += "- Piece " + integerText(piece["id"]) + " (" + piece["name"].get<std::string>() +
               ") hangs from " + parentsText(report, top["parents"]) + ", gear " +
               top["gear"].get<std::string>() + ": " + gearText(report, piece) +
               addedRowsText(piece) + "\n";
@@ -173,7 +161,7 @@ std::string barLengthsMarkdown(const json& report) {
         if (!graded(piece))
             continue;
         const bool byRow = piece["bar_axis"] == "row";
-        md += "\n### Piece " + integer(piece["id"]) + " (" + piece["name"].get<std::string>() +
+        md += "\n### Piece " + integerText(piece["id"]) + " (" + piece["name"].get<std::string>() +
               "), graded by " + (byRow ? "row" : "column") + "\n\n" +
               (byRow ? rowLengths(piece) : columnLengths(piece));
     }

@@ -24,6 +24,10 @@ std::string g6(double value);
 std::string markdownCell(const std::string& text);
 /// "row 0 column 3 to row 1 column 3": where a bar ({a, b} of a max_tension_at) is in its piece.
 std::string barPlaceText(const nlohmann::json& at);
+/// A JSON integer (an id, a row) as text.
+std::string integerText(const nlohmann::json& v);
+/// The entry of report["pieces"] whose id is `id`.
+const nlohmann::json& reportPiece(const nlohmann::json& report, const nlohmann::json& id);
 
 /// A piece's strength from its material and its largest tension (N): breaking_load (N; null
 /// when the material has none), utilisation (largest tension / breaking load, a fraction; null

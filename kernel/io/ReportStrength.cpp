@@ -6,7 +6,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <stdexcept>
 #include <string>
 
 namespace netsculpt {
@@ -15,32 +14,21 @@ namespace {
 
 using nlohmann::json;
 
-std::string integer(const json& v) {
-    return std::to_string(v.get<long long>());
-}
-
-const json& pieceOf(const json& report, const json& id) {
-    for (const json& p : report["pieces"])
-        if (p["id"] == id)
-            return p;
-    throw std::logic_error("report: no piece " + integer(id));
-}
-
 /// "1 (tube), 2 (skirt)" for piece ids.
 std::string pieceNames(const json& report, const json& ids) {
     std::string text;
     for (const json& id : ids)
-        text += (text.empty() ? "" : ", ") + integer(id) + " (" +
-                pieceOf(report, id)["name"].get<std::string>() + ")";
+        text += (text.empty() ? "" : ", ") + integerText(id) + " (" +
+                reportPiece(report, id)["name"].get<std::string>() + ")";
     return text;
 }
 
 /// "6.52 (piece 1, row 0 column 3 to row 1 column 3: 460 N of a breaking load of 3000 N)".
 std::string leastSafetyText(const json& report) {
     const json& at = report["min_safety_factor_at"];
-    const json& piece = pieceOf(report, at["piece"]);
+    const json& piece = reportPiece(report, at["piece"]);
     const double factor = report["min_safety_factor"].get<double>();
-    return g6(factor) + " (piece " + integer(at["piece"]) + ", " + barPlaceText(at) + ": " +
+    return g6(factor) + " (piece " + integerText(at["piece"]) + ", " + barPlaceText(at) + ": " +
            g6(piece["max_tension"].get<double>()) + " N of a breaking load of " +
            g6(piece["breaking_load"].get<double>()) + " N)" +
            (factor < 1 ? " **below 1: the tension computed is more than the rope holds**" : "");
@@ -52,8 +40,8 @@ std::string strengthRow(const json& p) {
     const std::string factor = !checked ? "not checked"
                                : pulled ? g6(p["safety_factor"].get<double>())
                                         : "- (no bar in tension)";
-    return "| " + integer(p["id"]) + " | " + markdownCell(p["name"].get<std::string>()) + " | " +
-           (checked ? g6(p["breaking_load"].get<double>()) : std::string("none")) + " | " +
+    return "| " + integerText(p["id"]) + " | " + markdownCell(p["name"].get<std::string>()) +
+           " | " + (checked ? g6(p["breaking_load"].get<double>()) : std::string("none")) + " | " +
            g6(p["max_tension"].get<double>()) + " | " +
            (checked ? g6(100 * p["utilisation"].get<double>()) + " %" : std::string("-")) + " | " +
            factor + " | " + (pulled ? barPlaceText(p["max_tension_at"]) : std::string("-")) +

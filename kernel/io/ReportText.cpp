@@ -31,9 +31,19 @@ std::string markdownCell(const std::string& text) {
 }
 
 std::string barPlaceText(const nlohmann::json& at) {
-    const auto integer = [](const nlohmann::json& v) { return std::to_string(v.get<long long>()); };
-    return "row " + integer(at["a"]["row"]) + " column " + integer(at["a"]["column"]) + " to row " +
-           integer(at["b"]["row"]) + " column " + integer(at["b"]["column"]);
+    return "row " + integerText(at["a"]["row"]) + " column " + integerText(at["a"]["column"]) +
+           " to row " + integerText(at["b"]["row"]) + " column " + integerText(at["b"]["column"]);
+}
+
+std::string integerText(const nlohmann::json& v) {
+    return std::to_string(v.get<long long>());
+}
+
+const nlohmann::json& reportPiece(const nlohmann::json& report, const nlohmann::json& id) {
+    for (const nlohmann::json& p : report["pieces"])
+        if (p["id"] == id)
+            return p;
+    throw std::logic_error("report: no piece " + integerText(id));
 }
 
 namespace {
