@@ -348,38 +348,51 @@ TEST_CASE("connect: a last row dropped on a rail sphere connects there", "[inter
     CHECK(ui.handles().empty());    // connected: no free last row left
 }
 
-TEST_CASE("connect: a drop away from every rail changes nothing and journals nothing", "[interaction]") {
+namespace {
+
+/// A connect drag begun on the net's last-row sphere, in a journaled scene.
+struct ConnectDrag {
     Scene scene;
-    TempFile journal("connect.netj");
-    scene.doc.attachJournal(journal.path);
-    Interaction ui(scene.doc, scene.camera);
-    ui.setMode(Mode::Connect);
-    const std::uint64_t hash = scene.doc.hash();
-    const auto bytes = std::filesystem::file_size(journal.path);
-    const ScreenPoint from = onScreen(scene.camera, ui.handles().front().position);
-    moveTo(ui, from.x, from.y);
-    ui.handle(MousePress{MouseButton::Left, {}});
+    TempFile journal;
+    Interaction ui{scene.doc, scene.camera};
+    std::uint64_t hash = 0;
+    std::uintmax_t bytes = 0;
+
+    explicit ConnectDrag(const std::string& journalName) : journal(journalName) {
+        scene.doc.attachJournal(journal.path);
+        ui.setMode(Mode::Connect);
+        hash = scene.doc.hash();
+        bytes = std::filesystem::file_size(journal.path);
+        const ScreenPoint from = onScreen(scene.camera, ui.handles().front().position);
+        moveTo(ui, from.x, from.y);
+        ui.handle(MousePress{MouseButton::Left, {}});
+    }
+    /// The sculpture and its journal as they were before the drag, the net not connected.
+    void checkNothingChanged() {
+        CHECK(scene.doc.hash() == hash);
+        CHECK(std::filesystem::file_size(journal.path) == bytes);
+        CHECK_FALSE(scene.doc.sculpture().piece(scene.net).bottom.has_value());
+    }
+};
+
+} // namespace
+
+TEST_CASE("connect: a drop away from every rail changes nothing and journals nothing",
+          "[interaction]") {
+    ConnectDrag drag("connect.netj");
+    Interaction& ui = drag.ui;
     moveTo(ui, 5, 5); // the window's corner: no rail there
     CHECK(ui.hovered() == -1);
     ui.handle(MouseRelease{MouseButton::Left, {}});
-    CHECK(scene.doc.hash() == hash);
-    CHECK(std::filesystem::file_size(journal.path) == bytes);
-    CHECK_FALSE(scene.doc.sculpture().piece(scene.net).bottom.has_value());
+    drag.checkNothingChanged();
     CHECK(ui.handles().size() == 1); // back to the sources
 }
 
 TEST_CASE("connect: a drop over a panel changes nothing, though a rail sphere lies behind it",
           "[interaction]") {
-    Scene scene;
-    TempFile journal("connect-panel.netj");
-    scene.doc.attachJournal(journal.path);
-    Interaction ui(scene.doc, scene.camera);
-    ui.setMode(Mode::Connect);
-    const std::uint64_t hash = scene.doc.hash();
-    const auto bytes = std::filesystem::file_size(journal.path);
-    const ScreenPoint from = onScreen(scene.camera, ui.handles().front().position);
-    moveTo(ui, from.x, from.y);
-    ui.handle(MousePress{MouseButton::Left, {}});
+    ConnectDrag drag("connect-panel.netj");
+    Interaction& ui = drag.ui;
+    const Scene& scene = drag.scene;
     const Handle target =
         findHandle(ui, [&](const Handle& h) { return h.rail == scene.ring && h.t == 0.25; });
     const ScreenPoint to = onScreen(scene.camera, target.position);
@@ -389,9 +402,7 @@ TEST_CASE("connect: a drop over a panel changes nothing, though a rail sphere li
     moveTo(ui, to.x, to.y);
     CHECK(ui.hovered() == -1); // ... behind a panel it is not offered
     ui.handle(MouseRelease{MouseButton::Left, {}});
-    CHECK(scene.doc.hash() == hash);
-    CHECK(std::filesystem::file_size(journal.path) == bytes);
-    CHECK_FALSE(scene.doc.sculpture().piece(scene.net).bottom.has_value());
+    drag.checkNothingChanged();
     CHECK_FALSE(ui.messageIsError());
     CHECK_THAT(ui.message(), Catch::Matchers::StartsWith("connect: dropped over a panel; nothing "
                                                          "changed"));
