@@ -36,6 +36,8 @@ std::string quotedPath(const fs::path& path) {
     return "\"" + path.string() + "\"";
 }
 
+} // namespace
+
 /// A file name is text without NUL: the system would cut "x.nets\0y" to "x.nets" silently.
 void checkFileName(const std::string& text, const char* call) {
     if (text.empty())
@@ -46,8 +48,6 @@ void checkFileName(const std::string& text, const char* call) {
                         "\\0" + text.substr(nul + 1) + "\" holds a NUL character (byte " +
                         std::to_string(nul + 1) + "); a file name is text without NUL");
 }
-
-} // namespace
 
 std::vector<fs::path> readableFolders(const ScriptContext& context) {
     std::vector<fs::path> folders = {context.scriptDir, context.outputDir};

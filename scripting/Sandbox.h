@@ -30,6 +30,8 @@ std::vector<std::filesystem::path> readableFolders(const ScriptContext& context)
 /// Throws UserError saying which folders are allowed when the sandbox refuses it.
 std::filesystem::path resolveReadPath(const ScriptContext& context, const std::string& path,
                                       const char* call);
+/// Throws UserError naming `call` when `text` is no file name: empty, or holding a NUL character.
+void checkFileName(const std::string& text, const char* call);
 /// The file a script may write at `path`; creates its parent folders inside the output folder.
 /// Throws UserError when the sandbox refuses it (nothing is created then).
 std::filesystem::path resolveWritePath(const ScriptContext& context, const std::string& path,

@@ -359,6 +359,15 @@ T.case("relax, export, report, save and open", function()
   -- A relative name the script saved opens too: a read not found in the script's folder is
   -- looked for in the output folder (DESIGN's save-then-open).
   T.eq(ns.open("api/design.nets"):hash(), snap:hash())
+  -- Each file is named by its kind: a journal under .nets would open without the shape it names.
+  T.raises(function() doc:save("api/design.nets") end,
+           "save: argument 'path' must end in .netj (a journal; doc:save_snapshot writes a .nets",
+           "got \"api/design.nets\"")
+  T.raises(function() doc:save_snapshot("api/shape.txt") end,
+           "save_snapshot: argument 'path' must end in .nets", "got \"api/shape.txt\"")
+  T.raises(function() doc:save("api/x.netj\0y") end, "save: the file name", "holds a NUL")
+  T.eq(io.open(ns.output_dir() .. "/api/shape.txt"), nil)
+  T.eq(doc:save("api/DESIGN.NETJ"):sub(-11), "DESIGN.NETJ")
 end)
 
 T.case("the report checks each piece's largest tension against its breaking load", function()
