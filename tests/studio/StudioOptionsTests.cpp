@@ -6,9 +6,12 @@
 
 #include <catch2/catch.hpp>
 
+#include <sstream>
+
 using Catch::Matchers::Contains;
 using netsculpt::UserError;
 using netsculpt::studio::parseStudioOptions;
+using netsculpt::studio::readCommandLine;
 
 TEST_CASE("studio options: --help asks for the usage, not an error", "[studio]") {
     // It was thrown as the error of a bad argument: the usage on stderr, exit status 2.
@@ -25,4 +28,18 @@ TEST_CASE("studio options: --settle takes seconds with fractions", "[studio]") {
                       Contains("--settle expects a number of seconds from 0 to 3600, got \"-1\""));
     CHECK_THROWS_WITH(parseStudioOptions({"--settle", "soon"}), Contains("got \"soon\""));
     CHECK_THROWS_AS(parseStudioOptions({"--settle", "1e9"}), UserError);
+}
+
+TEST_CASE("studio command line: --help prints the usage and exits 0, good options start",
+          "[studio]") {
+    std::ostringstream out, err;
+    const auto help = readCommandLine({"--help"}, out, err);
+    CHECK(help.exitStatus == 0);
+    CHECK(out.str() == netsculpt::studio::studioUsage());
+    CHECK(err.str().empty());
+    const auto start = readCommandLine({"--demo", "--size", "640x480"}, out, err);
+    CHECK_FALSE(start.exitStatus.has_value());
+    CHECK(start.options.demo);
+    CHECK(start.options.width == 640);
+    CHECK(err.str().empty());
 }

@@ -95,4 +95,21 @@ StudioOptions parseStudioOptions(const std::vector<std::string>& args) {
     return o;
 }
 
+CommandLine readCommandLine(const std::vector<std::string>& args, std::ostream& out,
+                            std::ostream& err) {
+    CommandLine commandLine;
+    try {
+        commandLine.options = parseStudioOptions(args);
+    } catch (const UserError& e) {
+        err << e.what() << "\n";
+        commandLine.exitStatus = 2;
+        return commandLine;
+    }
+    if (commandLine.options.help) {
+        out << studioUsage();
+        commandLine.exitStatus = 0;
+    }
+    return commandLine;
+}
+
 } // namespace netsculpt::studio

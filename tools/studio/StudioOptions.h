@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -35,5 +36,16 @@ std::filesystem::path defaultSessionJournal();
 /// `help` set, nothing after it read.
 StudioOptions parseStudioOptions(const std::vector<std::string>& args);
 std::string studioUsage();
+
+/// The command line as main() acts on it: the options to start with, or the status to exit with.
+struct CommandLine {
+    StudioOptions options;
+    std::optional<int> exitStatus; ///< set: start nothing, exit with it
+};
+
+/// Reads `args` (argv after the program's name): after --help the usage is on `out` and the exit
+/// status 0; after a bad argument the error is on `err` and the exit status 2.
+CommandLine readCommandLine(const std::vector<std::string>& args, std::ostream& out,
+                            std::ostream& err);
 
 } // namespace netsculpt::studio

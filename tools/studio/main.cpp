@@ -4,27 +4,20 @@
 #include "StudioOptions.h"
 
 #include "commands/HeapSettings.h"
-#include "model/Error.h"
 
 #include <cstdio>
 #include <exception>
+#include <iostream>
 
 int main(int argc, char** argv) {
     using namespace netsculpt;
     keepFreedMemoryForReuse();
-    studio::StudioOptions options;
+    const studio::CommandLine commandLine =
+        studio::readCommandLine({argv + 1, argv + argc}, std::cout, std::cerr);
+    if (commandLine.exitStatus)
+        return *commandLine.exitStatus;
     try {
-        options = studio::parseStudioOptions(std::vector<std::string>(argv + 1, argv + argc));
-    } catch (const UserError& e) {
-        std::fprintf(stderr, "%s\n", e.what());
-        return 2;
-    }
-    if (options.help) {
-        std::fputs(studio::studioUsage().c_str(), stdout);
-        return 0;
-    }
-    try {
-        studio::App app(options);
+        studio::App app(commandLine.options);
         return app.run();
     } catch (const std::exception& e) {
         std::fprintf(stderr, "netsculpt-studio: %s\n", e.what());
