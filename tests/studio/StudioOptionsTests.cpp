@@ -30,6 +30,27 @@ TEST_CASE("studio options: --settle takes seconds with fractions", "[studio]") {
     CHECK_THROWS_AS(parseStudioOptions({"--settle", "1e9"}), UserError);
 }
 
+TEST_CASE("studio command line: a bad argument is a usage error worded as netsculpt's",
+          "[studio]") {
+    // It printed the bare message ("--size expects WxH, ..."), some with the whole usage after it,
+    // without the program's name: netsculpt says "netsculpt: error: ..." and how to get help.
+    for (const auto& [arguments, message] :
+         {std::pair{std::vector<std::string>{"--size", "100"},
+                    "--size expects WxH, e.g. 1280x800, got \"100\""},
+          std::pair{std::vector<std::string>{"--demo", "--bogus"}, "unknown argument \"--bogus\""},
+          std::pair{std::vector<std::string>{"--open"}, "--open needs a value"},
+          std::pair{std::vector<std::string>{"--demo", "--open", "a.netj"},
+                    "give at most one of --script, --open and --demo"}}) {
+        INFO(arguments.back());
+        std::ostringstream out, err;
+        const auto commandLine = readCommandLine(arguments, out, err);
+        CHECK(commandLine.exitStatus == 2);
+        CHECK(err.str() == std::string("netsculpt-studio: error: ") + message +
+                               "\nRun with --help for more information.\n");
+        CHECK(out.str().empty());
+    }
+}
+
 TEST_CASE("studio command line: --help prints the usage and exits 0, good options start",
           "[studio]") {
     std::ostringstream out, err;

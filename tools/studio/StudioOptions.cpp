@@ -10,6 +10,9 @@ namespace netsculpt::studio {
 
 namespace {
 
+/// The exit status of a usage error, as netsculpt's (tools/cli/README.md).
+constexpr int kExitUsageError = 2;
+
 int parseInt(const std::string& text, const std::string& option, int lo, int hi) {
     int value = 0;
     const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
@@ -52,7 +55,8 @@ StudioOptions parseStudioOptions(const std::vector<std::string>& args) {
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         auto value = [&]() -> const std::string& {
-            if (i + 1 >= args.size()) throw UserError(a + " needs a value\n" + studioUsage());
+            if (i + 1 >= args.size())
+                throw UserError(a + " needs a value");
             return args[++i];
         };
         if (a == "--script") o.script = value();
@@ -86,11 +90,12 @@ StudioOptions parseStudioOptions(const std::vector<std::string>& args) {
             o.help = true;
             return o;
         } else {
-            throw UserError("unknown argument \"" + a + "\"\n" + studioUsage());
+            throw UserError("unknown argument \"" + a + "\"");
         }
     }
     const int sources = int(o.script.has_value()) + int(o.open.has_value()) + int(o.demo || o.demoKnots > 0);
-    if (sources > 1) throw UserError("give at most one of --script, --open and --demo\n" + studioUsage());
+    if (sources > 1)
+        throw UserError("give at most one of --script, --open and --demo");
     if (o.play) o.vsync = false;
     return o;
 }
@@ -101,8 +106,9 @@ CommandLine readCommandLine(const std::vector<std::string>& args, std::ostream& 
     try {
         commandLine.options = parseStudioOptions(args);
     } catch (const UserError& e) {
-        err << e.what() << "\n";
-        commandLine.exitStatus = 2;
+        err << "netsculpt-studio: error: " << e.what()
+            << "\nRun with --help for more information.\n";
+        commandLine.exitStatus = kExitUsageError;
         return commandLine;
     }
     if (commandLine.options.help) {

@@ -32,8 +32,8 @@ struct StudioOptions {
 /// ~/.local/share/netsculpt/session.netj.
 std::filesystem::path defaultSessionJournal();
 
-/// Parses argv. Throws UserError naming the bad argument and the usage. --help stops the parse:
-/// `help` set, nothing after it read.
+/// Parses argv. Throws UserError naming the bad argument. --help stops the parse: `help` set,
+/// nothing after it read.
 StudioOptions parseStudioOptions(const std::vector<std::string>& args);
 std::string studioUsage();
 
@@ -44,7 +44,9 @@ struct CommandLine {
 };
 
 /// Reads `args` (argv after the program's name): after --help the usage is on `out` and the exit
-/// status 0; after a bad argument the error is on `err` and the exit status 2.
+/// status 0; after a bad argument the error is on `err` as netsculpt words a usage error
+/// ("netsculpt-studio: error: <what>", then "Run with --help for more information.") and the
+/// exit status 2.
 CommandLine readCommandLine(const std::vector<std::string>& args, std::ostream& out,
                             std::ostream& err);
 
