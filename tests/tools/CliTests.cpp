@@ -84,6 +84,31 @@ TEST_CASE("Help, version and usage errors", "[cli]") {
                Contains("unexpected arguments: --frobnicate\n"));
 }
 
+TEST_CASE("Without a command, the error lists the commands and how to get help", "[cli]") {
+    // It said "A subcommand is required", naming none.
+    for (const char* arguments : {"", "-q"}) {
+        INFO(arguments);
+        const Ran r = runCli(arguments);
+        CHECK(r.exitCode == 2);
+        CHECK_THAT(r.output,
+                   StartsWith("netsculpt: error: no command given; the commands are:\n"
+                              "  run     Run a sculpture script (sandboxed unless --unsafe)\n"
+                              "  replay  Replay a journal, check it and print the sculpture's "
+                              "hash\n"));
+        for (const char* command : {"\n  to-lua  ", "\n  relax   ", "\n  export  ", "\n  report  "})
+            CHECK_THAT(r.output, Contains(command));
+        CHECK_THAT(r.output,
+                   Contains("\n'netsculpt COMMAND --help' describes a command's arguments "
+                            "and options.\nRun with --help for more information.\n"));
+    }
+    // An option that is not a global one is named too, with the nearest one.
+    const Ran misspelt = runCli("--quite");
+    CHECK(misspelt.exitCode == 2);
+    CHECK_THAT(misspelt.output,
+               StartsWith("netsculpt: error: unexpected arguments: --quite (--quite: did you mean "
+                          "--quiet?), and no command given; the commands are:\n  run "));
+}
+
 TEST_CASE("export --rails writes the rails alone, unrelaxed, and import_rails reads them back",
           "[cli]") {
     const fs::path dir = freshFolder("rails");

@@ -40,6 +40,37 @@ std::string nearestOption(const CLI::App& command, const std::string& given) {
     return best;
 }
 
+/// "unexpected arguments: ..." in the order given, with the option of `command` nearest a
+/// misspelt one, or where a script's own options go.
+std::string unexpectedArguments(const CLI::App& command, const std::vector<std::string>& extra) {
+    std::string text = "unexpected arguments:";
+    for (const std::string& argument : extra)
+        text += " " + argument;
+    for (const std::string& argument : extra)
+        if (argument.starts_with("--"))
+            if (const std::string near = nearestOption(command, argument); !near.empty())
+                return text + " (" + argument + ": did you mean " + near + "?)";
+    if (command.get_name() == "run" && extra.front().starts_with("-"))
+        return text + " (a script's own arguments that start with - go after --: netsculpt run " +
+               "SCRIPT -- " + extra.front() + ")";
+    return text;
+}
+
+/// The commands of `app`, one a line with its description, and how to get a command's help.
+std::string commandList(const CLI::App& app) {
+    const auto commands = app.get_subcommands({});
+    std::size_t width = 0;
+    for (const CLI::App* command : commands)
+        width = std::max(width, command->get_name().size());
+    std::string text;
+    for (const CLI::App* command : commands) {
+        const std::string& name = command->get_name();
+        text += "  " + name + std::string(width - name.size() + 2, ' ') +
+                command->get_description() + "\n";
+    }
+    return text + "'netsculpt COMMAND --help' describes a command's arguments and options.";
+}
+
 } // namespace
 
 std::string describeParseError(const CLI::App& app, const CLI::ParseError& e) {
@@ -53,20 +84,13 @@ std::string describeParseError(const CLI::App& app, const CLI::ParseError& e) {
             names += (names.empty() ? "" : ", ") + command->get_name();
         return "unknown command '" + extra.front() + "'; the commands are " + names;
     }
+    const bool required = dynamic_cast<const CLI::RequiredError*>(&e) != nullptr;
+    if (required && commands.empty())
+        return (extra.empty() ? "" : unexpectedArguments(app, extra) + ", and ") +
+               "no command given; the commands are:\n" + commandList(app);
     if (dynamic_cast<const CLI::ExtrasError*>(&e) == nullptr || extra.empty())
         return e.what();
-    std::string text = "unexpected arguments:";
-    for (const std::string& argument : extra)
-        text += " " + argument;
-    const CLI::App& command = commands.empty() ? app : *commands.front();
-    for (const std::string& argument : extra)
-        if (argument.starts_with("--"))
-            if (const std::string near = nearestOption(command, argument); !near.empty())
-                return text + " (" + argument + ": did you mean " + near + "?)";
-    if (command.get_name() == "run" && extra.front().starts_with("-"))
-        return text + " (a script's own arguments that start with - go after --: netsculpt run " +
-               "SCRIPT -- " + extra.front() + ")";
-    return text;
+    return unexpectedArguments(commands.empty() ? app : *commands.front(), extra);
 }
 
 } // namespace netsculpt::cli
