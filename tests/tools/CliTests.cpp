@@ -19,6 +19,7 @@
 
 using namespace netsculpt::test;
 using Catch::Matchers::Contains;
+using Catch::Matchers::EndsWith;
 using Catch::Matchers::StartsWith;
 namespace fs = std::filesystem;
 
@@ -107,6 +108,42 @@ TEST_CASE("Without a command, the error lists the commands and how to get help",
     CHECK_THAT(misspelt.output,
                StartsWith("netsculpt: error: unexpected arguments: --quite (--quite: did you mean "
                           "--quiet?), and no command given; the commands are:\n  run "));
+}
+
+TEST_CASE("A missing argument is named as the usage line names it, with what it is", "[cli]") {
+    // export DOC without its files said "files is required", CLI11's name for them.
+    for (const auto& [arguments, message] :
+         {std::pair{"export d.netj",
+                    "export needs FILE..., the files to write, by extension: .csv .obj .ply .glb "
+                    ".json .svg .png .dxf (with --rails: .csv .obj .dxf); usage: netsculpt export "
+                    "DOC FILE...\n"},
+          std::pair{"export d.netj --rails", "export needs FILE..., the files to write"},
+          std::pair{"export", "export needs DOC, a journal (.netj) or snapshot (.nets); usage: "
+                              "netsculpt export DOC FILE...\n"},
+          std::pair{"run", "run needs SCRIPT, the Lua script; usage: netsculpt run SCRIPT "
+                           "[ARGS...]\n"},
+          std::pair{"-q run --out x", "run needs SCRIPT, the Lua script"},
+          std::pair{"replay", "replay needs JOURNAL, the journal (.netj); usage: netsculpt "
+                              "replay JOURNAL\n"},
+          std::pair{"to-lua", "to-lua needs JOURNAL, the journal (.netj) or snapshot (.nets); "
+                              "usage: netsculpt to-lua JOURNAL\n"},
+          std::pair{"relax --max-steps 5", "relax needs DOC, a journal (.netj) or snapshot "
+                                           "(.nets); usage: netsculpt relax DOC\n"},
+          std::pair{"report --json", "report needs DOC, a journal (.netj) or snapshot (.nets); "
+                                     "usage: netsculpt report DOC\n"},
+          std::pair{"export d.netj --frobnicate",
+                    "unexpected arguments: --frobnicate, and export needs FILE..., the files"}}) {
+        INFO(arguments);
+        const Ran r = runCli(arguments);
+        CHECK(r.exitCode == 2);
+        CHECK_THAT(r.output, StartsWith("netsculpt: error: " + std::string(message)));
+        CHECK_THAT(r.output, EndsWith("\nRun with --help for more information.\n"));
+    }
+    // --help's usage line names them so too.
+    CHECK_THAT(runCli("export --help").output,
+               Contains("Usage: netsculpt export [OPTIONS] DOC FILE...\n"));
+    CHECK_THAT(runCli("run --help").output,
+               Contains("Usage: netsculpt run [OPTIONS] SCRIPT [ARGS...]\n"));
 }
 
 TEST_CASE("export --rails writes the rails alone, unrelaxed, and import_rails reads them back",

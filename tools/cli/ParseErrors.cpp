@@ -1,6 +1,7 @@
 #include "ParseErrors.h"
 
 #include <algorithm>
+#include <cctype>
 #include <vector>
 
 namespace netsculpt::cli {
@@ -71,6 +72,33 @@ std::string commandList(const CLI::App& app) {
     return text + "'netsculpt COMMAND --help' describes a command's arguments and options.";
 }
 
+/// A positional as the usage line writes it: DOC, FILE... (one or more), [ARGS...] (optional).
+std::string positionalUsage(const CLI::Option& positional) {
+    const std::string name =
+        positional.get_name(true) + (positional.get_items_expected_max() > 1 ? "..." : "");
+    return positional.get_required() ? name : "[" + name + "]";
+}
+
+/// "export needs FILE..., the files to write, by extension: ...; usage: netsculpt export DOC
+/// FILE..." for the first required positional of `command` not given, "" when none is missing
+/// (CLI11 says "files is required", naming neither the argument as the usage does nor what it is).
+std::string missingArgument(const CLI::App& command) {
+    const auto positionals =
+        command.get_options([](const CLI::Option* option) { return option->get_positional(); });
+    std::string usage = "netsculpt " + command.get_name();
+    for (const CLI::Option* positional : positionals)
+        usage += " " + positionalUsage(*positional);
+    for (const CLI::Option* positional : positionals)
+        if (positional->get_required() && positional->count() == 0) {
+            std::string what = positional->get_description();
+            if (!what.empty())
+                what[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(what[0])));
+            return command.get_name() + " needs " + positionalUsage(*positional) + ", " + what +
+                   "; usage: " + usage;
+        }
+    return {};
+}
+
 } // namespace
 
 std::string describeParseError(const CLI::App& app, const CLI::ParseError& e) {
@@ -88,6 +116,10 @@ std::string describeParseError(const CLI::App& app, const CLI::ParseError& e) {
     if (required && commands.empty())
         return (extra.empty() ? "" : unexpectedArguments(app, extra) + ", and ") +
                "no command given; the commands are:\n" + commandList(app);
+    if (required)
+        if (const std::string missing = missingArgument(*commands.front()); !missing.empty())
+            return (extra.empty() ? "" : unexpectedArguments(*commands.front(), extra) + ", and ") +
+                   missing;
     if (dynamic_cast<const CLI::ExtrasError*>(&e) == nullptr || extra.empty())
         return e.what();
     return unexpectedArguments(commands.empty() ? app : *commands.front(), extra);

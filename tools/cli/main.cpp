@@ -83,9 +83,9 @@ CLI::Validator wholeNumberFrom(int lowest) {
 
 void addRun(CLI::App& app, Options& o) {
     CLI::App* run = app.add_subcommand("run", "Run a sculpture script (sandboxed unless --unsafe)");
-    run->add_option("script", o.run.script, "The Lua script")->required();
+    run->add_option("SCRIPT", o.run.script, "The Lua script")->required();
     run->add_option(
-        "args", o.run.args,
+        "ARGS", o.run.args,
         "Arguments for the script (its global `arg`); put -- before ones starting with -");
     run->add_option("--out,-o", o.run.out,
                     "Output folder: where doc:save/doc:export write and the journal goes "
@@ -117,18 +117,17 @@ void addRun(CLI::App& app, Options& o) {
 void addJournalCommands(CLI::App& app, Options& o) {
     CLI::App* replay =
         app.add_subcommand("replay", "Replay a journal, check it and print the sculpture's hash");
-    replay->add_option("journal", o.journal, "The journal (.netj)")->required();
+    replay->add_option("JOURNAL", o.journal, "The journal (.netj)")->required();
     replay->add_option("--out,-o", o.replayOut, "Write the replayed journal to OUT/<name>.netj");
     CLI::App* toLua =
         app.add_subcommand("to-lua", "Print a journal (or snapshot) as an equivalent Lua script");
-    toLua->add_option("journal", o.journal, "The journal (.netj) or snapshot (.nets)")->required();
+    toLua->add_option("JOURNAL", o.journal, "The journal (.netj) or snapshot (.nets)")->required();
 }
 
 void addRelax(CLI::App& app, Options& o) {
     CLI::App* relax =
         app.add_subcommand("relax", "Relax a sculpture and save the shape as OUT/<name>.nets");
-    relax->add_option("document", o.relax.document, "A journal (.netj) or snapshot (.nets)")
-        ->required();
+    relax->add_option("DOC", o.relax.document, "A journal (.netj) or snapshot (.nets)")->required();
     relax->add_option("--backend", o.relax.backend, "Relaxation backend")
         ->capture_default_str()
         ->check(CLI::IsMember(relaxerNames()));
@@ -147,16 +146,16 @@ void addRelax(CLI::App& app, Options& o) {
 void addExport(CLI::App& app, Options& o) {
     CLI::App* exporting =
         app.add_subcommand("export", "Export a sculpture's shape (format by extension)");
-    exporting->add_option("document", o.exporting.document, "A journal (.netj) or snapshot (.nets)")
+    exporting->add_option("DOC", o.exporting.document, "A journal (.netj) or snapshot (.nets)")
         ->required();
     CLI::Option* noRelax =
         exporting->add_flag("!--no-relax", o.exporting.relaxFirst,
                             "Export the shape as it is; without it a shape that is not relaxed (a "
                             "journal's) is relaxed first");
     exporting
-        ->add_option("files", o.exporting.files,
-                     "Files to write: .csv .obj .ply .glb .json .svg .png .dxf (with --rails: "
-                     ".csv .obj .dxf)")
+        ->add_option("FILE", o.exporting.files,
+                     "The files to write, by extension: .csv .obj .ply .glb .json .svg .png .dxf "
+                     "(with --rails: .csv .obj .dxf)")
         ->required();
     std::vector<CLI::Option*> shapeOptions{noRelax};
     shapeOptions.push_back(
@@ -189,7 +188,7 @@ void addExport(CLI::App& app, Options& o) {
 void addReport(CLI::App& app, Options& o) {
     CLI::App* report =
         app.add_subcommand("report", "Print the fabrication and load report (Markdown by default)");
-    report->add_option("document", o.report.document, "A journal (.netj) or snapshot (.nets)")
+    report->add_option("DOC", o.report.document, "A journal (.netj) or snapshot (.nets)")
         ->required();
     report->add_flag("!--no-relax", o.report.relaxFirst,
                      "Report the shape as it is; without it a shape that is not relaxed (a "
