@@ -7,10 +7,13 @@
 
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <chrono>
 #include <csignal>
+#include <cstdlib>
 #include <fcntl.h>
 #include <fstream>
+#include <poll.h>
 #include <sstream>
 #include <thread>
 #include <unistd.h>
@@ -18,16 +21,18 @@
 
 using namespace netsculpt::test;
 using Catch::Matchers::Contains;
+using Catch::Matchers::StartsWith;
 namespace fs = std::filesystem;
 
 namespace {
 
-/// Starts `netsculpt <arguments>` with stdout and stderr into `output`.
+/// Starts `netsculpt <arguments>` with stdout and stderr into `output` (a file, or a terminal's
+/// side that the program writes to).
 pid_t spawnCli(const std::vector<std::string>& arguments, const fs::path& output) {
     const pid_t pid = fork();
     if (pid != 0)
         return pid;
-    const int out = open(output.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int out = open(output.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOCTTY, 0644);
     const int none = open("/dev/null", O_RDONLY);
     dup2(none, STDIN_FILENO);
     dup2(out, STDOUT_FILENO);
@@ -127,6 +132,38 @@ TEST_CASE("With --quiet, Ctrl-C is not acknowledged, only its error said", "[cli
     const std::string output = readFile(dir / "run.txt");
     CHECK_THAT(output, Contains("loop.lua:6: script interrupted (Ctrl-C)"));
     CHECK_THAT(output, !Contains("Ctrl-C again"));
+}
+
+TEST_CASE("Ctrl-C's acknowledgement starts with an empty line on a terminal only", "[cli]") {
+    // It began with "\n" (ending a terminal's progress line) in a log file too.
+    const fs::path dir = freshFolder("cli-interrupt-acknowledge");
+    const fs::path script = writeScript(dir, "loop.lua", tubeScript("while true do end\n"));
+    const pid_t toFile = spawnCli({"run", script.string(), "--out", dir.string()}, dir / "run.txt");
+    CHECK(interruptWhenCaught(toFile) == 130);
+    CHECK_THAT(readFile(dir / "run.txt"),
+               StartsWith("netsculpt: Ctrl-C: stopping (Ctrl-C again to quit at once)\n"));
+
+    // On a (pseudo-)terminal, whose output side writes "\r\n" for "\n". What the program wrote
+    // is a few lines, within what the terminal holds until it is read.
+    const int terminal = posix_openpt(O_RDWR | O_NOCTTY);
+    REQUIRE(terminal >= 0);
+    REQUIRE(grantpt(terminal) == 0);
+    REQUIRE(unlockpt(terminal) == 0);
+    const pid_t toTerminal =
+        spawnCli({"run", script.string(), "--out", dir.string()}, ptsname(terminal));
+    CHECK(interruptWhenCaught(toTerminal) == 130);
+    std::string output;
+    std::array<char, 256> buffer{};
+    pollfd ready{terminal, POLLIN, 0};
+    while (poll(&ready, 1, 1000) > 0) { // read fails (EIO) once all is read: the program is gone
+        const ssize_t n = read(terminal, buffer.data(), buffer.size());
+        if (n <= 0)
+            break;
+        output.append(buffer.data(), static_cast<std::size_t>(n));
+    }
+    close(terminal);
+    CHECK_THAT(output, StartsWith("\r\nnetsculpt: Ctrl-C: stopping (Ctrl-C again to quit at once)"
+                                  "\r\n"));
 }
 
 TEST_CASE("Ctrl-C stops a script's relax, and pcall does not catch it", "[cli]") {

@@ -7,25 +7,32 @@ namespace netsculpt::cli {
 
 namespace {
 
+constexpr char kAcknowledgement[] =
+    "\nnetsculpt: Ctrl-C: stopping (Ctrl-C again to quit at once)\n";
+
 std::atomic<bool> interrupted{false};
-std::atomic<bool> acknowledge{true};
+/// Where the handler's line starts in kAcknowledgement: 0 on a terminal (the "\n" ends a progress
+/// line first), 1 elsewhere (a log would get an empty line), -1 for no line (--quiet). Set before
+/// the handler is installed: isatty is not async-signal-safe.
+std::atomic<int> acknowledgementStart{-1};
 static_assert(std::atomic<bool>::is_always_lock_free, "read and written in a signal handler");
+static_assert(std::atomic<int>::is_always_lock_free, "read in a signal handler");
 struct sigaction before {};
 
 void onInterrupt(int) {
     interrupted.store(true);
-    static constexpr char kMessage[] =
-        "\nnetsculpt: Ctrl-C: stopping (Ctrl-C again to quit at once)\n";
-    if (!acknowledge.load())
+    const int start = acknowledgementStart.load();
+    if (start < 0)
         return;
-    [[maybe_unused]] const ssize_t written = write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
+    [[maybe_unused]] const ssize_t written =
+        write(STDERR_FILENO, kAcknowledgement + start, sizeof kAcknowledgement - 1 - start);
 }
 
 } // namespace
 
 InterruptRequest::InterruptRequest(bool quiet) {
     interrupted.store(false);
-    acknowledge.store(!quiet);
+    acknowledgementStart.store(quiet ? -1 : isatty(STDERR_FILENO) != 0 ? 0 : 1);
     sigaction(SIGINT, nullptr, &before);
     if (before.sa_handler == SIG_IGN) // started in the background: Ctrl-C is not for it
         return;

@@ -22,7 +22,8 @@ class Interrupted : public std::runtime_error {
 
 class InterruptRequest {
   public:
-    /// Catches SIGINT; one at a time. `quiet`: no line on stderr acknowledges the first Ctrl-C.
+    /// Catches SIGINT; one at a time. The first Ctrl-C is acknowledged by a line on stderr (after
+    /// a "\n" that ends the progress line when stderr is a terminal); `quiet`: no line.
     explicit InterruptRequest(bool quiet = false);
     ~InterruptRequest(); ///< gives SIGINT back its action from before
     InterruptRequest(const InterruptRequest&) = delete;
