@@ -32,24 +32,28 @@ constexpr std::array<Unit, 9> kUnits{{{"m", 1.0},
 
 namespace io {
 
+std::string farCoordinate(double c, double metres) {
+    if (std::isnan(c) || std::abs(c * metres) <= kMaxCoordinate)
+        return {};
+    const bool inMetres = metres == 1.0;
+    return concat(
+        {numberText(c), inMetres ? " m" : concat({" (", numberText(c * metres), " m)"}),
+         ", too large: rails must lie within ", numberText(kMaxCoordinate),
+         " m of the origin in x, y and z",
+         inMetres ? ""
+                  : concat({" (", numberText(kMaxCoordinate / metres), " in the file's units)"})});
+}
+
 void checkCoordinates(const std::string& file, const std::string& where,
                       const std::vector<Vec3>& points, double metres) {
     for (const Vec3& p : points)
         for (const double c : {p.x, p.y, p.z}) {
-            if (std::abs(c * metres) <= kMaxCoordinate)
-                continue;
             if (std::isnan(c))
                 throw UserError(concat({file, ": ", where,
                                         ": has a coordinate that is not a number (nan); "
                                         "coordinates must be finite numbers"}));
-            const bool inMetres = metres == 1.0;
-            throw UserError(concat(
-                {file, ": ", where, ": has a coordinate of ", numberText(c),
-                 inMetres ? " m" : concat({" (", numberText(c * metres), " m)"}),
-                 ", too large: rails must lie within ", numberText(kMaxCoordinate),
-                 " m of the origin in x, y and z",
-                 inMetres ? "" : concat({" (", numberText(kMaxCoordinate / metres),
-                                         " in the file's units)"})}));
+            if (const std::string far = farCoordinate(c, metres); !far.empty())
+                throw UserError(concat({file, ": ", where, ": has a coordinate of ", far}));
         }
 }
 
@@ -120,7 +124,7 @@ std::vector<NamedCurve> importRailsFile(const std::filesystem::path& path,
     if (ext == "obj")
         return io::finishRails(file, io::readObj(path, metres), metres);
     if (ext == "csv")
-        return io::finishRails(file, io::readCsv(path), metres);
+        return io::finishRails(file, io::readCsv(path, metres), metres);
     throw UserError(file + ": cannot read rails from a ." + ext +
                     " file; rail files are .dxf, .obj and .csv");
 }

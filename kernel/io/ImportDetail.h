@@ -35,6 +35,11 @@ inline double extent(const std::vector<Vec3>& points) {
     return distance(lo, hi);
 }
 
+/// Why coordinate `c` (file units, `metres` each) is refused: "2e+08 m, too large: rails must
+/// lie within 1e+08 m of the origin in x, y and z" (with the file's units when not metres); ""
+/// when it is within kMaxCoordinate, or nan (which has a message of its own).
+std::string farCoordinate(double c, double metres);
+
 /// UserError "<file>: <where>: ..." naming the coordinate and the allowed range unless every
 /// coordinate of `points` (file units, `metres` each) is finite and within kMaxCoordinate.
 void checkCoordinates(const std::string& file, const std::string& where,
@@ -49,8 +54,9 @@ std::vector<NamedCurve> finishRails(const std::string& file, std::vector<Sourced
 /// A polyline spec from points; a last point equal to the first closes it (and is dropped).
 CurveSpec polylineSpec(std::vector<Vec3> points, bool closed = false);
 
-/// CSV rails (RailText.cpp), in file units.
-std::vector<SourcedCurve> readCsv(const std::filesystem::path& path);
+/// CSV rails (RailText.cpp), in file units; `metres` per unit for the coordinate check, which
+/// names the line of a coordinate beyond kMaxCoordinate (finishRails could name only the rail's).
+std::vector<SourcedCurve> readCsv(const std::filesystem::path& path, double metres);
 /// OBJ rails (RailText.cpp), in file units; `metres` per unit for the coordinate check.
 std::vector<SourcedCurve> readObj(const std::filesystem::path& path, double metres);
 

@@ -94,6 +94,16 @@ double coordinate(const std::string& file, std::size_t line, std::string_view fi
 
 // ---- CSV ----
 
+/// A CSV coordinate: a finite number within kMaxCoordinate (`metres` per file unit), else a
+/// UserError naming its line, the value and what is allowed.
+double csvCoordinate(const std::string& file, std::size_t line, std::string_view field,
+                     const char* what, double metres) {
+    const double value = coordinate(file, line, field, what);
+    if (const std::string far = farCoordinate(value, metres); !far.empty())
+        throw UserError(file + ":" + std::to_string(line) + ": " + what + " is " + far);
+    return value;
+}
+
 /// `text` without the UTF-8 byte-order mark that spreadsheets write before a CSV's first field.
 std::string withoutByteOrderMark(std::string text) {
     if (text.starts_with("\xEF\xBB\xBF"))
@@ -136,7 +146,7 @@ CsvColumns readCsvHeader(const std::string& file, std::size_t lineNo, std::strin
 
 } // namespace
 
-std::vector<SourcedCurve> readCsv(const std::filesystem::path& path) {
+std::vector<SourcedCurve> readCsv(const std::filesystem::path& path, double metres) {
     const std::string file = displayName(path);
     const std::string text = withoutByteOrderMark(readWholeFile(path));
     checkText(file, text);
@@ -169,9 +179,9 @@ std::vector<SourcedCurve> readCsv(const std::filesystem::path& path) {
         const std::string rail = at.rail >= 0 ? fields[std::size_t(at.rail)] : stem;
         if (rail.empty())
             throw UserError(file + ":" + std::to_string(lineNo) + ": the rail column is empty");
-        const Vec3 p{coordinate(file, lineNo, fields[std::size_t(at.x)], "x"),
-                     coordinate(file, lineNo, fields[std::size_t(at.y)], "y"),
-                     coordinate(file, lineNo, fields[std::size_t(at.z)], "z")};
+        const Vec3 p{csvCoordinate(file, lineNo, fields[std::size_t(at.x)], "x", metres),
+                     csvCoordinate(file, lineNo, fields[std::size_t(at.y)], "y", metres),
+                     csvCoordinate(file, lineNo, fields[std::size_t(at.z)], "z", metres)};
         if (!points.count(rail)) {
             order.push_back(rail);
             firstLine[rail] = lineNo;

@@ -17,6 +17,7 @@
 using namespace netsculpt;
 using namespace netsculpt::test;
 using Catch::Matchers::Contains;
+using Catch::Matchers::EndsWith;
 
 namespace {
 
@@ -122,6 +123,33 @@ TEST_CASE("CSV rails: one rail per file, or grouped by a rail column") {
     CHECK(bare[0].curve.points[0] == Vec3{0, 0, 0});
 }
 
+TEST_CASE("A CSV coordinate too far out is refused naming its own line, not its rail's first") {
+    // It said "rail 'b' (from line 3): has a coordinate of ...", the line where rail b starts.
+    const std::string text = "rail,x,y,z\n"
+                             "a,0,0,5\n"
+                             "b,0,3,5\n"
+                             "a,1,0,5\n"
+                             "b,1,3,5\n"
+                             "# a comment\n"
+                             "a,2,0,5\n"
+                             "b,2,3,5\n"
+                             "b,3,3,-2.5e8\n"
+                             "a,3,0,5\n";
+    CHECK_THROWS_WITH(importText("far.csv", text),
+                      EndsWith("far.csv:9: z is -2.5e+08 m, too large: rails must lie within "
+                               "1e+08 m of the origin in x, y and z"));
+    // In another unit, the limit is said in it too; the same numbers in mm are near.
+    ImportOptions km;
+    km.units = "km";
+    CHECK_THROWS_WITH(importText("far-km.csv", "0,0,0\n1,0,0\n2,0,0\n3,2e5,0\n", km),
+                      EndsWith("far-km.csv:4: y is 2e+05 (2e+08 m), too large: rails must lie "
+                               "within 1e+08 m of the origin in x, y and z (1e+05 in the file's "
+                               "units)"));
+    ImportOptions mm;
+    mm.units = "mm";
+    CHECK(importText("far-mm.csv", text, mm)[1].curve.points[3] == Vec3{0.003, 0.003, -2.5e5});
+}
+
 TEST_CASE("OBJ rails: l elements, named by their object, closed when they end where they start") {
     auto rails = importText("net.obj", "# test\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0 0.5 0.5 0.5\n"
                                        "o loop\nl 1 2 3 4 1\no pair\nl 1 3\nl -1 -2/7\n");
@@ -165,7 +193,8 @@ TEST_CASE("bad CSV and OBJ files give an error with the file and line, and no ra
     fails("nan.csv", "0,0,0\n1,nan,0\n", ":2: y is 'nan'");
     fails("word.csv", "0,0,0\n1,two,0\n", ":2: y 'two' is not a number");
     fails("range.csv", "0,0,0\n1e400,0,0\n", ":2: x '1e400' is out of range: too large");
-    fails("far.csv", "0,0,0\n2e8,0,0\n", "coordinate of 2e+08 m, too large: rails must lie within 1e+08 m");
+    fails("far.csv", "0,0,0\n2e8,0,0\n",
+          ":2: x is 2e+08 m, too large: rails must lie within 1e+08 m");
     fails("short.csv", "0,0,0\n1,0\n", ":2: 2 fields, expected 3");
     fails("header.csv", "a,b,c\n1,2,3\n", ":1: the header 'a,b,c' has a column 'a'");
     fails("knots.csv", "piece,row,column,x,y,z,fixed\n1,0,0,0,0,3,1\n",
