@@ -7,8 +7,10 @@
 #include "model/Error.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
+#include <utility>
 
 namespace netsculpt::io {
 
@@ -216,6 +218,19 @@ std::size_t vertexIndex(const std::string& file, std::size_t lineNo, const std::
     return std::size_t(resolved - 1);
 }
 
+/// Refuses OBJ vertex `index` (0-based, defined on line `vertexLine`) when a coordinate is too
+/// far out, naming the vertex's own line and the `l` on line `lineNo` that uses it.
+void checkObjVertex(const std::string& file, std::size_t lineNo, std::size_t index,
+                    std::size_t vertexLine, const Vec3& vertex, double metres) {
+    const std::array<std::pair<const char*, double>, 3> coordinates{
+        {{"x", vertex.x}, {"y", vertex.y}, {"z", vertex.z}}};
+    for (const auto& [what, value] : coordinates)
+        if (const std::string far = farCoordinate(value, metres); !far.empty())
+            throw UserError(concat({file, ":", std::to_string(vertexLine), ": vertex ",
+                                    std::to_string(index + 1), ", used by the 'l' on line ",
+                                    std::to_string(lineNo), ": ", what, " is ", far}));
+}
+
 } // namespace
 
 /// The `l` elements of each object (in order of first appearance), chained into rails like a
@@ -225,6 +240,7 @@ std::vector<SourcedCurve> readObj(const std::filesystem::path& path, double metr
     const std::string text = readWholeFile(path);
     checkText(file, text);
     std::vector<Vec3> vertices;
+    std::vector<std::size_t> vertexLines; // where each vertex is defined
     std::vector<std::string> objects; // in order of their first `l`
     std::map<std::string, std::vector<ChainPart>> parts;
     std::string object = path.stem().string();
@@ -243,6 +259,7 @@ std::vector<SourcedCurve> readObj(const std::filesystem::path& path, double metr
             vertices.push_back({coordinate(file, lineNo, words[1], "x"),
                                 coordinate(file, lineNo, words[2], "y"),
                                 coordinate(file, lineNo, words[3], "z")});
+            vertexLines.push_back(lineNo);
         } else if (keyword == "o" || keyword == "g") {
             if (words.size() > 1)
                 object = std::string(trim(line.substr(1)));
@@ -251,10 +268,11 @@ std::vector<SourcedCurve> readObj(const std::filesystem::path& path, double metr
                 throw UserError(file + ":" + std::to_string(lineNo) +
                                 ": a line element needs at least 2 vertices");
             ChainPart part{{}, object, "line " + std::to_string(lineNo), lineNo};
-            for (std::size_t w = 1; w < words.size(); ++w)
-                part.points.push_back(
-                    vertices[vertexIndex(file, lineNo, words[w], vertices.size())]);
-            checkCoordinates(file, part.where, part.points, metres);
+            for (std::size_t w = 1; w < words.size(); ++w) {
+                const std::size_t v = vertexIndex(file, lineNo, words[w], vertices.size());
+                checkObjVertex(file, lineNo, v, vertexLines[v], vertices[v], metres);
+                part.points.push_back(vertices[v]);
+            }
             if (!parts.count(object))
                 objects.push_back(object);
             parts[object].push_back(std::move(part));

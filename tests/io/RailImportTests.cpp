@@ -150,6 +150,19 @@ TEST_CASE("A CSV coordinate too far out is refused naming its own line, not its 
     CHECK(importText("far-mm.csv", text, mm)[1].curve.points[3] == Vec3{0.003, 0.003, -2.5e5});
 }
 
+TEST_CASE("An OBJ vertex too far out is refused naming its own line and the l that uses it") {
+    // It named only the 'l' line ("line 8: has a coordinate of ..."), where no number is.
+    const std::string text = "v 0 0 5\nv 1 0 5\n# far\nv 2 0 -2.5e8\nv 9e9 0 0\n"
+                             "o edge\nl 1 2\nl 2 3\n";
+    CHECK_THROWS_WITH(importText("far.obj", text),
+                      EndsWith("far.obj:4: vertex 3, used by the 'l' on line 8: z is -2.5e+08 m, "
+                               "too large: rails must lie within 1e+08 m of the origin in x, y "
+                               "and z"));
+    // A vertex no 'l' uses is no rail's: vertex 4 is as far, and the rail without vertex 3 reads.
+    CHECK(importText("near.obj", "v 0 0 5\nv 1 0 5\nv 9e9 0 0\nl 1 2\n")[0].curve.points ==
+          std::vector<Vec3>{{0, 0, 5}, {1, 0, 5}});
+}
+
 TEST_CASE("OBJ rails: l elements, named by their object, closed when they end where they start") {
     auto rails = importText("net.obj", "# test\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0 0.5 0.5 0.5\n"
                                        "o loop\nl 1 2 3 4 1\no pair\nl 1 3\nl -1 -2/7\n");
