@@ -83,6 +83,9 @@ TEST_CASE("Help, version and usage errors", "[cli]") {
     CHECK_THAT(runCli("report d.netj --jsn").output, Contains("did you mean --json?"));
     CHECK_THAT(runCli("relax d.netj --frobnicate").output,
                Contains("unexpected arguments: --frobnicate\n"));
+    // A short option is offered only for a near word: "--bogus" was "did you mean --out?".
+    CHECK_THAT(runCli("relax d.netj --bogus").output, Contains("unexpected arguments: --bogus\n"));
+    CHECK_THAT(runCli("relax d.netj --ot").output, Contains("(--ot: did you mean --out?)"));
 }
 
 TEST_CASE("Without a command, the error lists the commands and how to get help", "[cli]") {

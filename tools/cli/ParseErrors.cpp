@@ -26,14 +26,16 @@ std::size_t editDistance(const std::string& a, const std::string& b) {
 }
 
 /// The long option of `command` nearest `given` ("--tolerence": "--tolerance"), "" when none is
-/// within three edits.
+/// near: within an edit per three letters of the option's name (at least one, at most three),
+/// so that a short option is not offered for any word ("--bogus" is not "--out").
 std::string nearestOption(const CLI::App& command, const std::string& given) {
     std::string best;
     std::size_t bestDistance = 4;
     for (const CLI::Option* option : command.get_options())
         for (const std::string& name : option->get_lnames()) {
             const std::size_t d = editDistance(given, "--" + name);
-            if (d < bestDistance) {
+            const std::size_t near = std::clamp<std::size_t>((name.size() + 1) / 3, 1, 3);
+            if (d <= near && d < bestDistance) {
                 bestDistance = d;
                 best = "--" + name;
             }
