@@ -57,6 +57,23 @@ json railEdge(const Sculpture& s, const RailEdge& e) {
             {"start_along", curve.distanceAlong(start)}};
 }
 
+/// The parents' last rows as the child hangs from them, numbered as one row (sourceRow): each
+/// part's run of knots {piece, row, first_column, last_column, first_knot}. A seam knot is in
+/// the run before it when both parts end on the same row, else it is two knots, one in each.
+json joinedRow(const std::vector<KnotKey>& row) {
+    json runs = json::array();
+    for (std::size_t i = 0; i < row.size(); ++i) {
+        const KnotKey& k = row[i];
+        if (runs.empty() || runs.back()["piece"] != k.piece.value || runs.back()["row"] != k.row)
+            runs.push_back({{"piece", k.piece.value},
+                            {"row", k.row},
+                            {"first_column", k.column},
+                            {"first_knot", i}});
+        runs.back()["last_column"] = k.column;
+    }
+    return runs;
+}
+
 json pieceTop(const Sculpture& s, const Piece& p) {
     if (p.onRail())
         return railEdge(s, p.railTop());
@@ -64,12 +81,15 @@ json pieceTop(const Sculpture& s, const Piece& p) {
     json parents = json::array();
     for (PieceId id : e.parents)
         parents.push_back(id.value);
+    const std::vector<KnotKey> row = sourceRow(s, e);
     return {{"kind", "piece"},
             {"parents", parents},
             {"gear", toString(e.gear)},
             {"gear_value", e.gear.value()},
             {"offset", e.offset},
-            {"ring", e.ringClosed}};
+            {"ring", e.ringClosed},
+            {"joined_knots", row.size()},
+            {"joined_row", joinedRow(row)}};
 }
 
 /// (l - l_eq) / l_eq of bar b at the system's positions.

@@ -37,10 +37,14 @@
 //   material {stiffness, compression_ratio, knot_mass, linear_density, breaking_load (null when
 //   none)}, colour [r, g, b],
 //   top {kind "rail": rail, rail_name, at, step, offset, reverse, start, start_along | kind
-//   "piece": parents[], gear, gear_value, offset, ring} (offset: the column of the rail's or the
-//   parents' row where the piece's column 0 is; start: the rail position of column 0, in [0, 1)
-//   on a closed rail; start_along: the distance along the rail from its start to there, m;
-//   ring: the parents' last rows close round), bottom (null or {rail, rail_name, at, step,
+//   "piece": parents[], gear, gear_value, offset, ring, joined_knots, joined_row[]} (offset: the
+//   column of the rail's or the geared row where the piece's column 0 is; start: the rail
+//   position of column 0, in [0, 1) on a closed rail; start_along: the distance along the rail
+//   from its start to there, m; ring: the parents' last rows close round; joined_knots: how many
+//   knots the parents' last rows hold, numbered as one row from the first part's column 0;
+//   joined_row: each part's run of them, {piece, row, first_column, last_column, first_knot},
+//   a seam knot in the run before it when both parts end on the same row, else two knots),
+//   bottom (null or {rail, rail_name, at, step,
 //   offset, reverse, start, start_along}), seams[] {side "left"/"right", piece, shared_bars (the bars along the seam column, made once),
 //   shared_bars_counted_in (the piece whose bars they are)}.
 //   rails[]: id, name, closed, length, sampling ("arc length" or "parameter": what t means),

@@ -26,24 +26,32 @@ std::string parentsText(const json& report, const json& parents) {
     return parents.size() == 1 ? text : text + ", taken in that order as one row";
 }
 
-/// How many knots the parents' last rows hold joined in order, a seam knot once; a ring when
-/// the child is closed (its last knot's seam joins the first part again).
-int joinedKnots(const json& report, const json& parents, bool ring) {
-    int knots = 0;
-    for (const json& id : parents)
-        knots += reportPiece(report, id)["columns"].get<int>();
-    return knots - int(parents.size()) + (ring ? 0 : 1);
+/// "14 knots: 0 to 4 are knots (4, 0) to (4, 4) of piece 1, 5 to 13 ...": which knot of which
+/// part each knot of the joined row is, and whether a seam knot is counted once.
+std::string joinedRowText(const json& report, const json& top) {
+    const int knots = top["joined_knots"].get<int>();
+    int columns = 0;
+    std::string text = std::to_string(knots) + " knots:";
+    for (const json& run : top["joined_row"]) {
+        columns += reportPiece(report, run["piece"])["columns"].get<int>();
+        const int first = run["first_knot"].get<int>();
+        const int last = first + run["last_column"].get<int>() - run["first_column"].get<int>();
+        const std::string row = integerText(run["row"]);
+        text += (first == 0 ? " " : ", ") + std::to_string(first) + " to " + std::to_string(last) +
+                " are knots (" + row + ", " + integerText(run["first_column"]) + ") to (" + row +
+                ", " + integerText(run["last_column"]) + ") of piece " + integerText(run["piece"]);
+    }
+    return knots < columns ? text + "; a seam knot counted once, in the part before it" : text;
 }
 
-/// "knot (19, X) of piece 1" for one parent, "knot X of that joined row (40 knots, ...)" for
+/// "knot (19, X) of piece 1" for one parent, "knot X of that joined row (40 knots: ...)" for
 /// several.
-std::string parentKnot(const json& report, const json& parents, const std::string& column,
-                       bool ring) {
+std::string parentKnot(const json& report, const json& top, const std::string& column) {
+    const json& parents = top["parents"];
+    const bool ring = top["ring"].get<bool>();
     const std::string wrap = ring ? ", round the ring: past the last, counting goes on from 0" : "";
     if (parents.size() != 1)
-        return "knot " + column + " of that joined row (" +
-               std::to_string(joinedKnots(report, parents, ring)) +
-               " knots from the first part's column 0, a seam knot counted once" + wrap + ")";
+        return "knot " + column + " of that joined row (" + joinedRowText(report, top) + wrap + ")";
     const json& parent = reportPiece(report, parents[0]);
     // Only an offset ("c + 4") can count past the last column.
     const bool offset = column.find('+') != std::string::npos;
@@ -66,30 +74,27 @@ std::string scaled(const std::string& column, const std::string& before, const s
 /// How row 0 of `piece` meets its parents' last row, by its gear (DESIGN.md).
 std::string gearText(const json& report, const json& piece) {
     const json& top = piece["top"];
-    const json& parents = top["parents"];
     const std::string id = integerText(piece["id"]), column = columnText(top["offset"].get<int>());
     const double gear = top["gear_value"].get<double>();
-    const bool ring = top["ring"].get<bool>();
     if (gear == 1)
         return "its row 0 is the last row above it: knot (0, c) of piece " + id + " is " +
-               parentKnot(report, parents, column, ring) + ".";
+               parentKnot(report, top, column) + ".";
     if (gear > 1) {
         const int g = int(gear + 0.5);
-        std::string text =
-            "knot (0, c) of piece " + id + " with " + column + " a multiple of " +
-            std::to_string(g) + " is " +
-            parentKnot(report, parents, scaled(column, "", " / " + std::to_string(g)), ring) +
-            "; " +
-            (g == 2 ? "the knot between two of them is new, tied"
-                    : "the two knots between two of them are new, each tied") +
-            " by one bar to each of the two.";
+        std::string text = "knot (0, c) of piece " + id + " with " + column + " a multiple of " +
+                           std::to_string(g) + " is " +
+                           parentKnot(report, top, scaled(column, "", " / " + std::to_string(g))) +
+                           "; " +
+                           (g == 2 ? "the knot between two of them is new, tied"
+                                   : "the two knots between two of them are new, each tied") +
+                           " by one bar to each of the two.";
         if (g == 3)
             text += " Both new knots hang from the same two knots, so they take one place.";
         return text;
     }
     const int g = int(1 / gear + 0.5);
     return "knot (0, c) of piece " + id + " is " +
-           parentKnot(report, parents, scaled(column, std::to_string(g) + " x ", ""), ring) +
+           parentKnot(report, top, scaled(column, std::to_string(g) + " x ", "")) +
            "; the other knots of that row keep only their bars up.";
 }
 

@@ -513,8 +513,9 @@ TEST_CASE("the report says how a child is knotted into its parent and every grad
     edit(split.s, [&](Sculpture& s) { return netsculpt::split(s, split.piece, 4); });
     split.compiled = compileSculpture(split.s);
     CHECK_THAT(reportMarkdown(buildReport(split.s, split.compiled)),
-               Contains("is knot c / 2 of that joined row (12 knots from the first part's column "
-                        "0, a seam knot counted once, round the ring"));
+               Contains("is knot c / 2 of that joined row (12 knots: 0 to 4 are knots (4, 0) to "
+                        "(4, 4) of piece 1, 5 to 11 are knots (4, 1) to (4, 7) of piece 3; a seam "
+                        "knot counted once, in the part before it, round the ring"));
     CHECK_THAT(md, !Contains("## Bar lengths")); // one length everywhere: nothing to list
 
     // A sheet split at column 12, its left part graded 0.25 at column 0 to 0.2 at column 12: a
