@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <stdexcept>
 #include <string>
 
 namespace netsculpt {
@@ -58,6 +59,20 @@ std::string parentKnot(const json& report, const json& top, const std::string& c
     return "knot (" + std::to_string(parent["rows"].get<int>() - 1) + ", " + column +
            ") of piece " + integerText(parent["id"]) +
            (ring && offset ? " (" + wrap.substr(2) + ")" : "");
+}
+
+/// "knot (4, 2) of piece 3": knot `index` of the parents' joined row, counted round a ring.
+std::string joinedKnot(const json& top, int index) {
+    const int knots = top["joined_knots"].get<int>();
+    if (top["ring"].get<bool>())
+        index = (index % knots + knots) % knots;
+    for (const json& run : top["joined_row"]) {
+        const int column = run["first_column"].get<int>() + index - run["first_knot"].get<int>();
+        if (column >= run["first_column"].get<int>() && column <= run["last_column"].get<int>())
+            return "knot (" + integerText(run["row"]) + ", " + std::to_string(column) +
+                   ") of piece " + integerText(run["piece"]);
+    }
+    throw std::logic_error("report: no knot " + std::to_string(index) + " in the joined row");
 }
 
 /// "c + 4" for a child whose column 0 is column 4 of the joined row, else "c".
@@ -176,6 +191,21 @@ std::string barLengthsMarkdown(const json& report) {
            "knot centre to knot centre: a bar takes the mean of the lengths of the two columns "
            "(or rows) it joins.\n" +
            md;
+}
+
+std::string childStartText(const json& top) {
+    const int column = top["offset"].get<int>();
+    const double gear = top["gear_value"].get<double>();
+    if (gear < 1)
+        return joinedKnot(top, column * int(1 / gear + 0.5));
+    const int g = int(gear + 0.5), after = column % g;
+    const std::string knot = joinedKnot(top, column / g);
+    if (after == 0)
+        return knot;
+    return std::string(g == 2       ? "the new knot"
+                       : after == 1 ? "the first new knot"
+                                    : "the second new knot") +
+           " after " + knot;
 }
 
 } // namespace netsculpt

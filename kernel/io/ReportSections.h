@@ -18,6 +18,10 @@ std::string joinsMarkdown(const nlohmann::json& report);
 /// "## Bar lengths": every length a graded piece's bars are knotted to, column by column or row
 /// by row. Empty when every piece has one bar length.
 std::string barLengthsMarkdown(const nlohmann::json& report);
+/// Where a child whose column 0 is not its parents' first knot starts (its top's offset: a
+/// split part), in the parents' knots: "knot (4, 3) of piece 1", or for a new knot of a gear-up
+/// "the new knot after knot (4, 2) of piece 1" ("the first" / "the second" with gear 3).
+std::string childStartText(const nlohmann::json& top);
 /// A number as the Markdown prints it: 6 significant digits, no "-0".
 std::string g6(double value);
 /// Text for a Markdown table's cell: its "|" escaped.

@@ -109,7 +109,7 @@ std::string topText(const json& top) {
         parents += io::concat({parents.empty() ? "" : "+", std::to_string(p.get<int>())});
     const int offset = top["offset"].get<int>();
     return "piece " + parents + ", gear " + top["gear"].get<std::string>() +
-           (offset > 0 ? ", from column " + std::to_string(offset) + " of their last row" : "");
+           (offset > 0 ? ", from " + childStartText(top) : "");
 }
 
 std::string seamsText(const json& seams) {

@@ -75,3 +75,31 @@ TEST_CASE("the report numbers the joined row of split parents as the child hangs
                             "are knots (5, 0) to (5, 8) of piece 3, round the ring"));
     CHECK_THAT(md, !Contains("12 knots"));
 }
+
+TEST_CASE("the report gives where a split child starts in its parent's knots") {
+    // The ring of 12 columns and 5 rows with its gear-2 child of 24 columns: child column v of
+    // the whole row is the ring's knot (4, v / 2) when v is even, a new knot after (4, v / 2)
+    // when odd. The child split at 6 starts at (4, 3), not at "column 6" of a 12-knot row.
+    Tube even = tubeWithChild(12, 5, 1.0, 0.4);
+    edit(even.s, [&](Sculpture& s) { return split(s, even.child, 6); });
+    std::string csv = reportPiecesCsv(buildReport(even.s, compileSculpture(even.s)));
+    CHECK_THAT(csv, Contains(",\"piece 1, gear 2, from knot (4, 3) of piece 1\","));
+    CHECK_THAT(csv, !Contains("column 6"));
+
+    Tube odd = tubeWithChild(12, 5, 1.0, 0.4);
+    edit(odd.s, [&](Sculpture& s) { return split(s, odd.child, 5); });
+    csv = reportPiecesCsv(buildReport(odd.s, compileSculpture(odd.s)));
+    CHECK_THAT(csv,
+               Contains(",\"piece 1, gear 2, from the new knot after knot (4, 2) of piece 1\","));
+
+    // Gear 3 (36 columns) split at 7: 7 = 3 x 2 + 1, the first of the two new knots after (4, 2).
+    Tube three = tubeWithChild(12, 5, 1.0, 0.4);
+    edit(three.s, [&](Sculpture& s) {
+        setGear(s, three.child, Gear{3, 1});
+        return 0;
+    });
+    edit(three.s, [&](Sculpture& s) { return split(s, three.child, 7); });
+    const std::string md = reportMarkdown(buildReport(three.s, compileSculpture(three.s)));
+    CHECK_THAT(
+        md, Contains("| piece 1, gear 3, from the first new knot after knot (4, 2) of piece 1 |"));
+}
