@@ -28,12 +28,13 @@
 //   shared knot's knot mass counts once, in the first piece that holds it; the pieces' masses
 //   sum to total_mass), bar_axis ("column" or "row"), bar_lengths[] (per column or per row),
 //   bar_lengths_between_rows[] (a piece whose length varies by row: the length of every bar
-//   between rows r and r + 1, as it is knotted; empty otherwise), max_tension (the largest
-//   tension of its bars, 0 when none is stretched), max_tension_at (that bar, as max_tension_at
-//   above; null when none is stretched), breaking_load (N, the material's: a bar's as knotted;
-//   null when it has none), utilisation (max_tension / breaking_load, a fraction; null without
-//   a breaking load), safety_factor (breaking_load / max_tension; null without a breaking load
-//   or without a bar in tension),
+//   between rows r and r + 1, as it is knotted; empty otherwise; below a gear-up the new knots
+//   of row 0 hang by bars of bar_lengths[c] of their column, or bar_lengths[0] by row),
+//   max_tension (the largest tension of its bars, 0 when none is stretched), max_tension_at
+//   (that bar, as max_tension_at above; null when none is stretched), breaking_load (N, the
+//   material's: a bar's as knotted; null when it has none), utilisation (max_tension /
+//   breaking_load, a fraction; null without a breaking load), safety_factor (breaking_load /
+//   max_tension; null without a breaking load or without a bar in tension),
 //   material {stiffness, compression_ratio, knot_mass, linear_density, breaking_load (null when
 //   none)}, colour [r, g, b],
 //   top {kind "rail": rail, rail_name, at, step, offset, reverse, start, start_along | kind
@@ -103,8 +104,9 @@ RelaxStatus relaxStatus(const Document& doc);
 /// The Markdown summary that `netsculpt report` prints.
 std::string reportMarkdown(const nlohmann::json& report);
 /// Per-piece table as CSV (id, name, rows, columns, closed, knots, bars, rope_length, mass,
-/// bar_axis, bar_min, bar_max, bar_first, bar_last: the knotted lengths at the first and the last
-/// column, or between the first and the last two rows; max_tension; top and last_row: where the
+/// bar_axis, bar_min, bar_max (of every bar's length, a gear's bars in row 0 too), bar_first,
+/// bar_last: the knotted lengths at the first and the last column, or between the first and the
+/// last two rows; max_tension; top and last_row: where the
 /// piece hangs from and where its last row is tied, "free" when nowhere, as the Markdown says;
 /// knots_tied; breaking_load, utilisation, safety_factor, max_tension_at ("row 0 column 3 to
 /// row 1 column 3"): empty where the JSON has null).

@@ -86,6 +86,22 @@ std::string scaled(const std::string& column, const std::string& before, const s
     return before + term + after;
 }
 
+bool graded(const json& piece) {
+    const json& lengths = piece["bar_lengths"];
+    for (const json& l : lengths)
+        if (l != lengths.front())
+            return true;
+    return false;
+}
+
+/// "of 0.13 m": the length of the bars a gear-up's new knot hangs by, its own column's or row
+/// 0's (the compiler's barLength(0, c, 0, c)).
+std::string gearBarText(const json& piece) {
+    if (graded(piece) && piece["bar_axis"] == "column")
+        return "of its column's length (Bar lengths below)";
+    return "of " + g6(piece["bar_lengths"][0].get<double>()) + " m";
+}
+
 /// How row 0 of `piece` meets its parents' last row, by its gear (DESIGN.md).
 std::string gearText(const json& report, const json& piece) {
     const json& top = piece["top"];
@@ -102,7 +118,7 @@ std::string gearText(const json& report, const json& piece) {
                            "; " +
                            (g == 2 ? "the knot between two of them is new, tied"
                                    : "the two knots between two of them are new, each tied") +
-                           " by one bar to each of the two.";
+                           " by one bar " + gearBarText(piece) + " to each of the two.";
         if (g == 3)
             text += " Both new knots hang from the same two knots, so they take one place.";
         return text;
@@ -135,24 +151,23 @@ std::string columnLengths(const json& piece) {
         md += "| " + std::to_string(c) + " | " + g6(lengths[c].get<double>()) + " | " +
               (hasNext ? g6(next) + (c + 1 == n ? " (to column 0)" : "") : "-") + " |\n";
     }
+    if (gearsUp(piece))
+        md += "\nRow 0's new knots (gear " + piece["top"]["gear"].get<std::string>() +
+              ") hang from the knots above by bars of their own column's length (bars within "
+              "the column).\n";
     return md;
 }
 
 std::string rowLengths(const json& piece) {
     const json& lengths = piece["bar_lengths_between_rows"];
     std::string md = "| rows | bars between them (m) |\n|---|---|\n";
+    if (gearsUp(piece))
+        md += "| 0 (the gear's new knots to the knots above) | " +
+              g6(piece["bar_lengths"][0].get<double>()) + " |\n";
     for (std::size_t r = 0; r < lengths.size(); ++r)
         md += "| " + std::to_string(r) + " to " + std::to_string(r + 1) + " | " +
               g6(lengths[r].get<double>()) + " |\n";
     return md;
-}
-
-bool graded(const json& piece) {
-    const json& lengths = piece["bar_lengths"];
-    for (const json& l : lengths)
-        if (l != lengths.front())
-            return true;
-    return false;
 }
 
 } // namespace
@@ -206,6 +221,11 @@ std::string childStartText(const json& top) {
                        : after == 1 ? "the first new knot"
                                     : "the second new knot") +
            " after " + knot;
+}
+
+bool gearsUp(const json& piece) {
+    const json& top = piece["top"];
+    return top["kind"] == "piece" && top["gear_value"].get<double>() > 1;
 }
 
 } // namespace netsculpt

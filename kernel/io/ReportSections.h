@@ -22,6 +22,9 @@ std::string barLengthsMarkdown(const nlohmann::json& report);
 /// split part), in the parents' knots: "knot (4, 3) of piece 1", or for a new knot of a gear-up
 /// "the new knot after knot (4, 2) of piece 1" ("the first" / "the second" with gear 3).
 std::string childStartText(const nlohmann::json& top);
+/// Whether `piece` (a report's piece) hangs from its parents through gear 2 or 3: its row 0 has
+/// new knots, each hung by two bars of its column's length, or row 0's when graded by row.
+bool gearsUp(const nlohmann::json& piece);
 /// A number as the Markdown prints it: 6 significant digits, no "-0".
 std::string g6(double value);
 /// Text for a Markdown table's cell: its "|" escaped.

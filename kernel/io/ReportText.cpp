@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <vector>
 
 namespace netsculpt {
 
@@ -129,8 +130,14 @@ const json& knottedLengths(const json& p) {
     return byRow.empty() ? p["bar_lengths"] : byRow;
 }
 
+/// Whether a piece graded by row hangs from a gear-up: its new knots of row 0 hang by bars of
+/// row 0's length, which no length between two rows is.
+bool rowGearBars(const json& p) {
+    return gearsUp(p) && !p["bar_lengths_between_rows"].empty();
+}
+
 /// The bar lengths as knotted, first to last: "0.25 at column 0 to 0.2 at column 12", or
-/// between rows for a piece whose length varies by row.
+/// between rows for a piece whose length varies by row (and its gear's bars in row 0).
 std::string barLengthText(const json& p) {
     const json& lengths = knottedLengths(p);
     const double first = lengths.front().get<double>(), last = lengths.back().get<double>();
@@ -138,7 +145,9 @@ std::string barLengthText(const json& p) {
         return g6(first);
     if (!p["bar_lengths_between_rows"].empty())
         return g6(first) + " between rows 0 and 1 to " + g6(last) + " between rows " +
-               std::to_string(lengths.size() - 1) + " and " + std::to_string(lengths.size());
+               std::to_string(lengths.size() - 1) + " and " + std::to_string(lengths.size()) +
+               (rowGearBars(p) ? ", " + g6(p["bar_lengths"][0]) + " in row 0 (the gear's new knots)"
+                               : std::string());
     return g6(first) + " at column 0 to " + g6(last) + " at column " +
            std::to_string(lengths.size() - 1);
 }
@@ -299,20 +308,16 @@ std::string reportPiecesCsv(const json& r) {
         "bar_first,bar_last,max_tension,top,last_row,knots_tied,breaking_load,utilisation,"
         "safety_factor,max_tension_at\n";
     for (const json& p : r["pieces"]) {
-        double lo = 0, hi = 0;
-        bool first = true;
-        for (const json& l : knottedLengths(p)) {
-            const double v = l.get<double>();
-            lo = first ? v : std::min(lo, v);
-            hi = first ? v : std::max(hi, v);
-            first = false;
-        }
+        std::vector<double> lengths = knottedLengths(p).get<std::vector<double>>();
+        if (rowGearBars(p))
+            lengths.push_back(p["bar_lengths"][0].get<double>());
+        const auto [lo, hi] = std::minmax_element(lengths.begin(), lengths.end());
         csv += num(p["id"]) + "," + csvField(p["name"].get<std::string>()) + "," + num(p["rows"]) +
                "," + num(p["columns"]) + "," + (p["closed"].get<bool>() ? "1" : "0") + "," +
                num(p["knots"]) + "," + num(p["bars"]) + "," + num(p["rope_length"]) + "," +
-               num(p["mass"]) + "," + p["bar_axis"].get<std::string>() + "," + io::numberText(lo) +
-               "," + io::numberText(hi) + "," + knottedEnds(p) + "," + num(p["max_tension"]) + "," +
-               csvField(topText(p["top"])) + "," +
+               num(p["mass"]) + "," + p["bar_axis"].get<std::string>() + "," + io::numberText(*lo) +
+               "," + io::numberText(*hi) + "," + knottedEnds(p) + "," + num(p["max_tension"]) +
+               "," + csvField(topText(p["top"])) + "," +
                csvField(p["bottom"].is_null() ? "free" : railEdgeText(p["bottom"])) + "," +
                num(p["knots_tied"]) + "," + strengthCsv(p) + "\n";
     }

@@ -37,6 +37,14 @@ SplitRing splitRingWithChild() {
     return t;
 }
 
+/// The rest length of the bar between knots a and b (0 when there is none).
+double restLengthBetween(const MassSpringSystem& sys, std::uint32_t a, std::uint32_t b) {
+    for (std::size_t i = 0; i < sys.barCount(); ++i)
+        if ((sys.barA[i] == a && sys.barB[i] == b) || (sys.barA[i] == b && sys.barB[i] == a))
+            return sys.restLength[i];
+    return 0;
+}
+
 const json& pieceOf(const json& report, PieceId id) {
     return reportPiece(report, json(id.value));
 }
@@ -102,4 +110,53 @@ TEST_CASE("the report gives where a split child starts in its parent's knots") {
     const std::string md = reportMarkdown(buildReport(three.s, compileSculpture(three.s)));
     CHECK_THAT(
         md, Contains("| piece 1, gear 3, from the first new knot after knot (4, 2) of piece 1 |"));
+}
+
+TEST_CASE("the report gives the length of a gear's bars in a graded child") {
+    // The gear-2 child (24 columns, 3 rows) graded by row, 0.3 m at row 0 to 0.4 m at row 2:
+    // 48 bars of 0.325 between rows 0 and 1, 48 of 0.375 between rows 1 and 2, and the 12 new
+    // knots of row 0 hang by 2 bars each of row 0's 0.3 m. Rope by hand: 15.6 + 18 + 7.2 m.
+    Tube t = tubeWithChild(12, 5, 1.0, 0.4);
+    edit(t.s, [&](Sculpture& s) {
+        setBarLengthByRow(s, t.child, 0, 0.3);
+        setBarLengthByRow(s, t.child, 2, 0.4);
+        return 0;
+    });
+    const CompiledSculpture c = compileSculpture(t.s);
+    const json r = buildReport(t.s, c);
+    const json& child = reportPiece(r, json(t.child.value));
+    CHECK(child["bars"] == 48 + 48 + 24);
+    CHECK(child["rope_length"].get<double>() == Approx(15.6 + 18 + 7.2).epsilon(1e-14));
+    std::size_t gearBars = 0;
+    for (std::size_t b = 0; b < c.system.barCount(); ++b)
+        gearBars += c.system.barPiece[b] == t.child && c.system.restLength[b] == 0.3 ? 1 : 0;
+    CHECK(gearBars == 24);
+    const std::string md = reportMarkdown(r);
+    CHECK_THAT(md, Contains("| 0 (the gear's new knots to the knots above) | 0.3 |\n"
+                            "| 0 to 1 | 0.325 |\n"));
+    CHECK_THAT(md, Contains("the knot between two of them is new, tied by one bar of 0.3 m to "
+                            "each of the two."));
+    CHECK_THAT(md, Contains("| 0.325 between rows 0 and 1 to 0.375 between rows 1 and 2, 0.3 in "
+                            "row 0 (the gear's new knots) |"));
+    CHECK_THAT(reportPiecesCsv(r), Contains(",row,0.3,0.375,")); // bar_min, bar_max
+
+    // Graded by column (a split part, 0.25 m at column 0 to 0.35 m at its last, 12): a new knot
+    // hangs by bars of its own column's length, 0.25 + 0.1 x c / 12, which its table lists.
+    Tube split = tubeWithChild(12, 5, 1.0, 0.4);
+    const PieceId part = edit(split.s, [&](Sculpture& s) {
+        netsculpt::split(s, split.child, 12);
+        setBarLength(s, split.child, 12, 0.35);
+        return split.child;
+    });
+    const CompiledSculpture cs = compileSculpture(split.s);
+    // Its knot (0, 3) is new, between the ring's knots (4, 1) and (4, 2).
+    const std::uint32_t newKnot = cs.knotOf(part, 0, 3);
+    for (int column : {1, 2})
+        CHECK(restLengthBetween(cs.system, newKnot, cs.knotOf(split.piece, 4, column)) ==
+              Approx(0.25 + 0.1 * 3 / 12).epsilon(1e-14));
+    const std::string partMd = reportMarkdown(buildReport(split.s, cs));
+    CHECK_THAT(partMd, Contains("| 3 | 0.275 | 0.279167 |"));
+    CHECK_THAT(partMd, Contains("Row 0's new knots (gear 2) hang from the knots above by bars of "
+                                "their own column's length (bars within the column)."));
+    CHECK_THAT(partMd, Contains("tied by one bar of its column's length (Bar lengths below)"));
 }
