@@ -49,6 +49,8 @@
 //   offset, reverse, start, start_along}), seams[] {side "left"/"right", piece, shared_bars (the bars along the seam column, made once),
 //   shared_bars_counted_in (the piece whose bars they are)}.
 //   rails[]: id, name, closed, length, sampling ("arc length" or "parameter": what t means),
+//   start (its first point: t = 0, along = 0), direction (the unit vector it runs along from
+//   there: the way t and along grow),
 //   attachments (fixed knots held by it), reaction (sum of the reaction forces of its points),
 //   max_reaction (the largest magnitude of one knot's reaction), max_point_load (the largest
 //   magnitude of the summed reactions of the knots tied at one point of the rail: pieces tied at

@@ -209,6 +209,14 @@ std::string railsMarkdown(const json& r) {
     return md;
 }
 
+/// Where a tape laid along the rail starts and which way it runs: "along" is measured from there.
+std::string railStartText(const json& rail) {
+    return "Distances along the rail are measured from its start, " + placeText(rail["start"]) +
+           " m, the way it runs from there: towards " + vecText(rail["direction"]) +
+           " (a unit vector)" +
+           (rail["closed"].get<bool>() ? ", and round the ring back to its start" : "") + ".";
+}
+
 /// Every point where the net is held, rail by rail, in the order of t.
 std::string attachmentsMarkdown(const json& r) {
     std::string md = "\n## Attachment points\n";
@@ -216,8 +224,8 @@ std::string attachmentsMarkdown(const json& r) {
         if (rail["points"].empty())
             continue;
         md += "\n### Rail " + num(rail["id"]) + " (" +
-              markdownCell(rail["name"].get<std::string>()) +
-              ")\n\n| piece | row | column | t | along the rail (m) | position (m) | reaction (N) "
+              markdownCell(rail["name"].get<std::string>()) + ")\n\n" + railStartText(rail) +
+              "\n\n| piece | row | column | t | along the rail (m) | position (m) | reaction (N) "
               "| magnitude (N) |\n|---|---|---|---|---|---|---|---|\n";
         for (const json& p : rail["points"])
             md += "| " + num(p["piece"]) + " | " + num(p["row"]) + " | " + num(p["column"]) +

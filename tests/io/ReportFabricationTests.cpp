@@ -10,6 +10,8 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
+
 using namespace netsculpt;
 using namespace netsculpt::test;
 using Catch::Matchers::Contains;
@@ -159,4 +161,33 @@ TEST_CASE("the report gives the length of a gear's bars in a graded child") {
     CHECK_THAT(partMd, Contains("Row 0's new knots (gear 2) hang from the knots above by bars of "
                                 "their own column's length (bars within the column)."));
     CHECK_THAT(partMd, Contains("tied by one bar of its column's length (Bar lengths below)"));
+}
+
+TEST_CASE("the report says where each rail starts and which way its distances run") {
+    // A straight rail from (0, 0, 0) to (0.8, 0, 0): its start, and +x.
+    SheetNet t = sheet(4, 3, 0.8, 0.3);
+    json r = buildReport(t.s, t.compiled);
+    CHECK(r["rails"][0]["start"] == json({{"x", 0.0}, {"y", 0.0}, {"z", 0.0}}));
+    CHECK(r["rails"][0]["direction"]["x"].get<double>() == Approx(1).epsilon(1e-15));
+    CHECK_THAT(reportMarkdown(r),
+               Contains("### Rail 1 (bar)\n\nDistances along the rail are measured from its start, "
+                        "(0.0000, 0.0000, 0.0000) m, the way it runs from there: towards (1, 0, 0) "
+                        "(a unit vector).\n"));
+
+    // A ring of 10 corners, radius 0.8 m at z = 2: corner 0 at (0.8, 0, 2), its first side
+    // towards corner 1 at 36 degrees, a chord at 90 + 18 = 108 degrees from +x.
+    Sculpture s;
+    const RailId rail =
+        edit(s, [](Sculpture& x) { return addRail(x, "ring", polygonRail(10, 0.8, 2.0)); });
+    edit(s, [&](Sculpture& x) { return attachToRail(x, {rail, 10, 0, 6, 0.3}); });
+    r = buildReport(s, compileSculpture(s));
+    const double pi = std::acos(-1.0), angle = 108 * pi / 180;
+    const json& ring = r["rails"][0];
+    CHECK(ring["start"]["x"].get<double>() == Approx(0.8).epsilon(1e-15));
+    CHECK(ring["start"]["z"].get<double>() == Approx(2).epsilon(1e-15));
+    CHECK(ring["direction"]["x"].get<double>() == Approx(std::cos(angle)).epsilon(1e-12));
+    CHECK(ring["direction"]["y"].get<double>() == Approx(std::sin(angle)).epsilon(1e-12));
+    CHECK_THAT(reportMarkdown(r), Contains("from its start, (0.8000, 0.0000, 2.0000) m, the way it "
+                                           "runs from there: towards (-0.309017, 0.951057, 0) (a "
+                                           "unit vector), and round the ring back to its start."));
 }
