@@ -121,8 +121,12 @@ json seamReport(const Sculpture& s, const MassSpringSystem& sys, const Seam& sea
             owner = sys.barPiece[b];
         }
     const bool left = seam.right == p;
+    const int rows = std::min(s.pieces.at(seam.left).rows, s.pieces.at(seam.right).rows);
     return {{"side", left ? "left" : "right"},
             {"piece", (left ? seam.left : seam.right).value},
+            {"column", left ? 0 : column},
+            {"other_column", left ? column : 0},
+            {"rows", rows},
             {"shared_bars", shared},
             {"shared_bars_counted_in", owner.value}};
 }

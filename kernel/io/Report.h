@@ -45,9 +45,11 @@
 //   knots the parents' last rows hold, numbered as one row from the first part's column 0;
 //   joined_row: each part's run of them, {piece, row, first_column, last_column, first_knot},
 //   a seam knot in the run before it when both parts end on the same row, else two knots),
-//   bottom (null or {rail, rail_name, at, step,
-//   offset, reverse, start, start_along}), seams[] {side "left"/"right", piece, shared_bars (the bars along the seam column, made once),
-//   shared_bars_counted_in (the piece whose bars they are)}.
+//   bottom (null or {rail, rail_name, at, step, offset, reverse, start, start_along}),
+//   seams[] {side "left"/"right", piece, column (this piece's column on the seam), other_column
+//   (the other piece's, the same knots), rows (they share rows 0 to rows - 1: the shorter
+//   piece's), shared_bars (the bars along the seam column, made once), shared_bars_counted_in
+//   (the piece whose bars they are)}.
 //   rails[]: id, name, closed, length, sampling ("arc length" or "parameter": what t means),
 //   start (its first point: t = 0, along = 0), direction (the unit vector it runs along from
 //   there: the way t and along grow),

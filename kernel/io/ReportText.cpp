@@ -117,8 +117,10 @@ std::string seamsText(const json& seams) {
     std::string text;
     for (const json& seam : seams)
         text += (text.empty() ? "" : "; ") + std::string("piece ") + num(seam["piece"]) +
-                " to the " + seam["side"].get<std::string>() + " (the " +
-                num(seam["shared_bars"]) + " bars along the seam counted in piece " +
+                " to the " + seam["side"].get<std::string>() + ": its column " +
+                num(seam["column"]) + ", rows 0 to " + std::to_string(seam["rows"].get<int>() - 1) +
+                ", is column " + num(seam["other_column"]) + " of piece " + num(seam["piece"]) +
+                " (the " + num(seam["shared_bars"]) + " bars along the seam counted in piece " +
                 num(seam["shared_bars_counted_in"]) + ")";
     return text.empty() ? "-" : text;
 }

@@ -191,3 +191,36 @@ TEST_CASE("the report says where each rail starts and which way its distances ru
                                            "runs from there: towards (-0.309017, 0.951057, 0) (a "
                                            "unit vector), and round the ring back to its start."));
 }
+
+TEST_CASE("the report says which columns of two pieces a seam joins, down to which row") {
+    // The ring of 12 columns split at 4: the left part (columns 0 to 4 of the ring, 5 columns)
+    // meets the right part (ring columns 4 to 12 = 0, 9 columns) at its column 4 = their column
+    // 0, and at its column 0 = their column 8, in all 5 rows.
+    Tube t = tubeWithChild(12, 5, 1.0, 0.4);
+    const PieceId right = edit(t.s, [&](Sculpture& s) { return split(s, t.piece, 4).second; });
+    json r = buildReport(t.s, compileSculpture(t.s));
+    const json& seams = reportPiece(r, json(t.piece.value))["seams"];
+    REQUIRE(seams.size() == 2);
+    for (const json& seam : seams) {
+        const bool toTheRight = seam["side"] == "right";
+        CHECK(seam["column"] == (toTheRight ? 4 : 0));
+        CHECK(seam["other_column"] == (toTheRight ? 0 : 8));
+        CHECK(seam["rows"] == 5);
+    }
+    const std::string id = std::to_string(right.value);
+    CHECK_THAT(reportMarkdown(r), Contains("piece " + id +
+                                           " to the right: its column 4, rows 0 to "
+                                           "4, is column 0 of piece " +
+                                           id + " (the 4 bars"));
+    CHECK_THAT(reportMarkdown(r), Contains("piece 1 to the right: its column 8, rows 0 to 4, is "
+                                           "column 0 of piece 1 (the 4 bars"));
+
+    // The right part one row longer shares the seam's knots down to the left part's row 4.
+    edit(t.s, [&](Sculpture& s) {
+        setRows(s, right, 6);
+        return 0;
+    });
+    r = buildReport(t.s, compileSculpture(t.s));
+    CHECK_THAT(reportMarkdown(r), Contains("piece 1 to the left: its column 0, rows 0 to 4, is "
+                                           "column 4 of piece 1 (the 4 bars"));
+}
