@@ -146,6 +146,7 @@ void checkFormat(const Call& call, const std::string& given, const std::string& 
 int w_export(Call& call) {
     const Document& doc = checkDocument(call);
     const std::string given = checkString(call, 2, "path");
+    checkFileName(given, call.name);
     const std::string ext = extensionOf(given);
     std::optional<TableArgs> args; // the options table (argument 3), if given
     if (!lua_isnoneornil(call.L, 3))
@@ -180,6 +181,7 @@ int w_report(Call& call) {
 int w_write_report(Call& call) {
     const Document& doc = checkDocument(call);
     const std::string given = checkString(call, 2, "path");
+    checkFileName(given, call.name);
     const std::string ext = extensionOf(given);
     if (ext != "json" && ext != "md" && ext != "csv")
         call.fail("argument 'path' must end in .json, .md or .csv, got \"" + given + "\"");

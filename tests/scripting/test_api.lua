@@ -366,6 +366,9 @@ T.case("relax, export, report, save and open", function()
   T.raises(function() doc:save_snapshot("api/shape.txt") end,
            "save_snapshot: argument 'path' must end in .nets", "got \"api/shape.txt\"")
   T.raises(function() doc:save("api/x.netj\0y") end, "save: the file name", "holds a NUL")
+  T.raises(function() doc:export("api/x.csv\0y") end, "export: the file name", "holds a NUL")
+  T.raises(function() doc:write_report("api/x.md\0y") end, "write_report: the file name",
+           "holds a NUL")
   T.eq(io.open(ns.output_dir() .. "/api/shape.txt"), nil)
   T.eq(doc:save("api/DESIGN.NETJ"):sub(-11), "DESIGN.NETJ")
 end)
