@@ -247,6 +247,15 @@ std::string strengthCsv(const json& p) {
            (p["max_tension_at"].is_null() ? std::string() : barPlaceText(p["max_tension_at"]));
 }
 
+/// The load case every tension and reaction of the report is of: "weight alone", or the weight
+/// and the wind its shape was relaxed in.
+std::string loadCaseText(const json& r) {
+    const json& wind = r.contains("wind") ? r["wind"] : json();
+    return wind.is_object() ? "weight and a wind of " + g6(wind["pressure"]) + " N/m towards " +
+                                  vecText(wind["direction"])
+                            : std::string("weight alone");
+}
+
 } // namespace
 
 std::string reportMarkdown(const json& r) {
@@ -268,12 +277,7 @@ std::string reportMarkdown(const json& r) {
               "); loads and tensions are those of the current, unbalanced shape.\n\n";
     md += "| quantity | value |\n|---|---|\n";
     // Every load below is of this case: a wind's load is in the tensions and reactions too.
-    const json& wind = r.contains("wind") ? r["wind"] : json();
-    md += "| load case | " +
-          (wind.is_object() ? "weight and a wind of " + g6(wind["pressure"]) + " N/m towards " +
-                                  vecText(wind["direction"])
-                            : std::string("weight alone")) +
-          " |\n";
+    md += "| load case | " + loadCaseText(r) + " |\n";
     md += "| knots | " + num(r["knots"]) + " |\n| bars | " + num(r["bars"]) + " |\n";
     md += "| rope length | " + g6(r["rope_length"]) + " m |\n";
     md += "| total mass | " + g6(r["total_mass"]) + " kg |\n| total weight | " +
@@ -316,7 +320,8 @@ std::string reportPiecesCsv(const json& r) {
     std::string csv =
         "id,name,rows,columns,closed,knots,bars,rope_length,mass,bar_axis,bar_min,bar_max,"
         "bar_first,bar_last,max_tension,top,last_row,knots_tied,breaking_load,utilisation,"
-        "safety_factor,max_tension_at\n";
+        "safety_factor,max_tension_at,load_case\n";
+    const std::string loadCase = csvField(loadCaseText(r));
     for (const json& p : r["pieces"]) {
         std::vector<double> lengths = knottedLengths(p).get<std::vector<double>>();
         if (rowGearBars(p))
@@ -329,13 +334,14 @@ std::string reportPiecesCsv(const json& r) {
                "," + io::numberText(*hi) + "," + knottedEnds(p) + "," + num(p["max_tension"]) +
                "," + csvField(topText(p["top"])) + "," +
                csvField(p["bottom"].is_null() ? "free" : railEdgeText(p["bottom"])) + "," +
-               num(p["knots_tied"]) + "," + strengthCsv(p) + "\n";
+               num(p["knots_tied"]) + "," + strengthCsv(p) + "," + loadCase + "\n";
     }
     return csv;
 }
 
 std::string reportAttachmentsCsv(const json& r) {
-    std::string csv = "rail,piece,row,column,t,x,y,z,fx,fy,fz,magnitude,along\n";
+    std::string csv = "rail,piece,row,column,t,x,y,z,fx,fy,fz,magnitude,along,load_case\n";
+    const std::string loadCase = csvField(loadCaseText(r));
     for (const json& rail : r["rails"])
         for (const json& p : rail["points"])
             csv += num(rail["id"]) + "," + num(p["piece"]) + "," + num(p["row"]) + "," +
@@ -343,7 +349,7 @@ std::string reportAttachmentsCsv(const json& r) {
                    num(p["position"]["y"]) + "," + num(p["position"]["z"]) + "," +
                    num(p["reaction"]["x"]) + "," + num(p["reaction"]["y"]) + "," +
                    num(p["reaction"]["z"]) + "," + num(p["magnitude"]) + "," + num(p["along"]) +
-                   "\n";
+                   "," + loadCase + "\n";
     return csv;
 }
 

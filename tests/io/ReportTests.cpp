@@ -20,6 +20,7 @@
 using namespace netsculpt;
 using namespace netsculpt::test;
 using Catch::Matchers::Contains;
+using Catch::Matchers::EndsWith;
 using nlohmann::json;
 
 namespace {
@@ -215,15 +216,18 @@ TEST_CASE("report as Markdown and CSV tables") {
     const std::string pieces = reportPiecesCsv(r);
     CHECK(pieces.rfind("id,name,rows,columns,closed,knots,bars,rope_length,mass,bar_axis,bar_min,"
                        "bar_max,bar_first,bar_last,max_tension,top,last_row,knots_tied,"
-                       "breaking_load,utilisation,safety_factor,max_tension_at\n",
+                       "breaking_load,utilisation,safety_factor,max_tension_at,load_case\n",
                        0) == 0);
     CHECK(lineCount(pieces) == 2);
     CHECK_THAT(pieces, Contains("\n1,piece 1,4,3,0,12,15,"));
     CHECK_THAT(pieces, Contains(",column,0.3,0.3,0.3,0.3,"));
     CHECK_THAT(pieces, Contains(",\"rail 1 (bar), from 0.0000 m along it (t = 0)\",free,12,"));
     const std::string points = reportAttachmentsCsv(r);
-    CHECK(points.rfind("rail,piece,row,column,t,x,y,z,fx,fy,fz,magnitude,along\n", 0) == 0);
+    CHECK(points.rfind("rail,piece,row,column,t,x,y,z,fx,fy,fz,magnitude,along,load_case\n", 0) ==
+          0);
     CHECK(lineCount(points) == 1 + 3);
+    CHECK_THAT(pieces, EndsWith(",weight alone\n"));
+    CHECK_THAT(points, EndsWith(",weight alone\n"));
     CHECK_THAT(points, Contains("\n1,1,0,2,1,"));
     // Every attachment point in the Markdown too, after the rails' sign convention.
     CHECK_THAT(md, Contains("the load on the rail is its opposite"));
@@ -442,6 +446,10 @@ TEST_CASE("a shape relaxed under wind: the report's residual and force balance c
     // The summary says which load case its tensions are of.
     CHECK_THAT(reportMarkdown(r),
                Contains("| load case | weight and a wind of 0.5 N/m towards (1, 0, 0) |"));
+    // So does every line of the CSVs, an engineer's file that travels without the summary.
+    const std::string windy = ",\"weight and a wind of 0.5 N/m towards (1, 0, 0)\"\n";
+    CHECK_THAT(reportPiecesCsv(r), EndsWith(windy));
+    CHECK_THAT(reportAttachmentsCsv(r), EndsWith(windy));
     // Judged under gravity alone, the same shape is out of balance by the wind's load.
     const json still = buildReport(doc.sculpture(), doc.compiled(),
                                    RelaxStatus{true, doc.lastRelax(), 1e-6, {}});

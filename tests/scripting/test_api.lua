@@ -333,7 +333,7 @@ T.case("relax, export, report, save and open", function()
   for line in io.lines(points) do
     rows = rows + 1
     if rows == 1 then
-      T.eq(line, "rail,piece,row,column,t,x,y,z,fx,fy,fz,magnitude,along")
+      T.eq(line, "rail,piece,row,column,t,x,y,z,fx,fy,fz,magnitude,along,load_case")
     else
       local fields = {}
       for field in line:gmatch("[^,]+") do fields[#fields + 1] = tonumber(field) end
