@@ -113,8 +113,10 @@ std::string reportMarkdown(const nlohmann::json& report);
 /// last two rows; max_tension; top and last_row: where the
 /// piece hangs from and where its last row is tied, "free" when nowhere, as the Markdown says;
 /// knots_tied; breaking_load, utilisation, safety_factor, max_tension_at ("row 0 column 3 to
-/// row 1 column 3"): empty where the JSON has null; load_case: the load case of every tension,
-/// "weight alone" or "weight and a wind of P N/m towards (x, y, z)", as the Markdown's summary).
+/// row 1 column 3"): empty where the JSON has null; seams: which column of the piece is which
+/// of another, in the Markdown's words, empty without a seam; load_case: the load case of every
+/// tension, "weight alone" or "weight and a wind of P N/m towards (x, y, z)", as the Markdown's
+/// summary).
 std::string reportPiecesCsv(const nlohmann::json& report);
 /// Per-attachment-point table as CSV (rail, piece, row, column, t, x, y, z: where the point is in
 /// the sculpture's coordinates, m; fx, fy, fz: the reaction, N, the force the rail exerts on the

@@ -320,7 +320,7 @@ std::string reportPiecesCsv(const json& r) {
     std::string csv =
         "id,name,rows,columns,closed,knots,bars,rope_length,mass,bar_axis,bar_min,bar_max,"
         "bar_first,bar_last,max_tension,top,last_row,knots_tied,breaking_load,utilisation,"
-        "safety_factor,max_tension_at,load_case\n";
+        "safety_factor,max_tension_at,seams,load_case\n";
     const std::string loadCase = csvField(loadCaseText(r));
     for (const json& p : r["pieces"]) {
         std::vector<double> lengths = knottedLengths(p).get<std::vector<double>>();
@@ -334,7 +334,9 @@ std::string reportPiecesCsv(const json& r) {
                "," + io::numberText(*hi) + "," + knottedEnds(p) + "," + num(p["max_tension"]) +
                "," + csvField(topText(p["top"])) + "," +
                csvField(p["bottom"].is_null() ? "free" : railEdgeText(p["bottom"])) + "," +
-               num(p["knots_tied"]) + "," + strengthCsv(p) + "," + loadCase + "\n";
+               num(p["knots_tied"]) + "," + strengthCsv(p) + "," +
+               (p["seams"].empty() ? std::string() : csvField(seamsText(p["seams"]))) + "," +
+               loadCase + "\n";
     }
     return csv;
 }

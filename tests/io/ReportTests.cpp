@@ -216,7 +216,7 @@ TEST_CASE("report as Markdown and CSV tables") {
     const std::string pieces = reportPiecesCsv(r);
     CHECK(pieces.rfind("id,name,rows,columns,closed,knots,bars,rope_length,mass,bar_axis,bar_min,"
                        "bar_max,bar_first,bar_last,max_tension,top,last_row,knots_tied,"
-                       "breaking_load,utilisation,safety_factor,max_tension_at,load_case\n",
+                       "breaking_load,utilisation,safety_factor,max_tension_at,seams,load_case\n",
                        0) == 0);
     CHECK(lineCount(pieces) == 2);
     CHECK_THAT(pieces, Contains("\n1,piece 1,4,3,0,12,15,"));
@@ -226,7 +226,7 @@ TEST_CASE("report as Markdown and CSV tables") {
     CHECK(points.rfind("rail,piece,row,column,t,x,y,z,fx,fy,fz,magnitude,along,load_case\n", 0) ==
           0);
     CHECK(lineCount(points) == 1 + 3);
-    CHECK_THAT(pieces, EndsWith(",weight alone\n"));
+    CHECK_THAT(pieces, EndsWith(",,weight alone\n")); // no seam
     CHECK_THAT(points, EndsWith(",weight alone\n"));
     CHECK_THAT(points, Contains("\n1,1,0,2,1,"));
     // Every attachment point in the Markdown too, after the rails' sign convention.
@@ -246,6 +246,11 @@ TEST_CASE("the report gives bar lengths as they are knotted, first to last") {
     CHECK(r["pieces"][0]["bar_lengths_between_rows"].empty());
     CHECK_THAT(reportMarkdown(r), Contains("| 0.25 at column 0 to 0.2 at column 12 |"));
     CHECK_THAT(reportPiecesCsv(r), Contains(",column,0.2,0.25,0.25,0.2,"));
+    // Which columns the seam ties together, as the Markdown says it: the left part's last
+    // (column 12 of 13) is the right part's first, in all 5 rows, its 4 bars made once.
+    const std::string seam = "its column 12, rows 0 to 4, is column 0 of piece 2 (the 4 bars";
+    CHECK_THAT(reportPiecesCsv(r), Contains("\"piece 2 to the right: " + seam));
+    CHECK_THAT(reportMarkdown(r), Contains("piece 2 to the right: " + seam));
 
     SheetNet t = sheet(5, 13, 2.4, 0.3);
 

@@ -663,8 +663,8 @@ TEST_CASE("report: each piece's breaking load, utilisation and safety factor in 
                             "not checked |") &&
                    Contains("\n## Strength\n") && Contains("\n| 2 | piece 2 | none | "));
 
-    // The pieces table's strength columns, each read back to the JSON's number, then its load
-    // case.
+    // The pieces table's strength columns, each read back to the JSON's number, then its seams
+    // (none) and load case.
     const Ran csv = runCli("report " + quoted(snapshot) + " --csv");
     REQUIRE(csv.exitCode == 0);
     std::istringstream lines(csv.output);
@@ -673,18 +673,19 @@ TEST_CASE("report: each piece's breaking load, utilisation and safety factor in 
     std::getline(lines, first);
     std::getline(lines, second);
     CHECK_THAT(header, Contains(",knots_tied,breaking_load,utilisation,safety_factor,"
-                                "max_tension_at,load_case") &&
+                                "max_tension_at,seams,load_case") &&
                            !Contains("load_case,"));
     const auto lastFields = [](const std::string& line) {
         std::vector<std::string> fields;
         std::string::size_type end = line.size();
-        for (int i = 0; i < 5; ++i) {
+        for (int i = 0; i < 6; ++i) {
             const std::string::size_type comma = line.rfind(',', end - 1);
             fields.insert(fields.begin(), line.substr(comma + 1, end - comma - 1));
             end = comma;
         }
         CHECK(fields.back() == "weight alone");
-        fields.pop_back();
+        CHECK(fields[4].empty()); // no seam
+        fields.resize(4);
         return fields; // breaking_load, utilisation, safety_factor, max_tension_at
     };
     const std::vector<std::string> tubeFields = lastFields(first);
