@@ -4,6 +4,7 @@
 #include "scripting/LuaSupport.h"
 
 #include <algorithm>
+#include <cctype>
 #include <system_error>
 
 namespace netsculpt::lua {
@@ -47,6 +48,17 @@ void checkFileName(const std::string& text, const char* call) {
         throw UserError(std::string(call) + ": the file name \"" + text.substr(0, nul) +
                         "\\0" + text.substr(nul + 1) + "\" holds a NUL character (byte " +
                         std::to_string(nul + 1) + "); a file name is text without NUL");
+}
+
+FileArgument checkFileArgument(const Call& call, int index) {
+    FileArgument argument{checkString(call, index, "path"), {}};
+    checkFileName(argument.given, call.name);
+    argument.extension = fs::path(argument.given).extension().string();
+    if (!argument.extension.empty())
+        argument.extension.erase(0, 1);
+    std::transform(argument.extension.begin(), argument.extension.end(), argument.extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return argument;
 }
 
 std::vector<fs::path> readableFolders(const ScriptContext& context) {

@@ -16,6 +16,7 @@
 // inside the output folder, and may then also be absolute).
 
 #include "scripting/Context.h"
+#include "scripting/LuaSupport.h"
 
 #include <filesystem>
 #include <string>
@@ -32,6 +33,13 @@ std::filesystem::path resolveReadPath(const ScriptContext& context, const std::s
                                       const char* call);
 /// Throws UserError naming `call` when `text` is no file name: empty, or holding a NUL character.
 void checkFileName(const std::string& text, const char* call);
+/// The file name a writing call (doc:save, doc:export, ...) takes as its argument `index`.
+struct FileArgument {
+    std::string given;     ///< as the script gave it
+    std::string extension; ///< its ending in lower case, without the dot ("" for none)
+};
+/// A string argument checked as a file name (checkFileName), with its ending.
+FileArgument checkFileArgument(const Call& call, int index);
 /// The file a script may write at `path`; creates its parent folders inside the output folder.
 /// Throws UserError when the sandbox refuses it (nothing is created then).
 std::filesystem::path resolveWritePath(const ScriptContext& context, const std::string& path,

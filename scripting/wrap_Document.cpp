@@ -8,10 +8,8 @@
 #include "scripting/Sandbox.h"
 #include "scripting/Wrap.h"
 
-#include <cctype>
 #include <cstdint>
 #include <cstdio>
-#include <filesystem>
 #include <string>
 
 namespace netsculpt::lua {
@@ -83,13 +81,9 @@ int w_can_redo(Call& call) {
 /// The path argument of doc:save or doc:save_snapshot, refused unless it ends in `extension`
 /// (any case): a journal and a snapshot are opened by their content, but named by their kind.
 std::string checkSavePath(const Call& call, const char* extension, const char* what) {
-    const std::string given = checkString(call, 2, "path");
-    checkFileName(given, call.name);
-    std::string ext = std::filesystem::path(given).extension().string();
-    for (char& c : ext)
-        c = char(std::tolower(static_cast<unsigned char>(c)));
+    const auto [given, ext] = checkFileArgument(call, 2);
     if (ext != extension)
-        call.fail(std::string("argument 'path' must end in ") + extension + " (" + what +
+        call.fail(std::string("argument 'path' must end in .") + extension + " (" + what +
                   "), got \"" + given + "\"");
     return given;
 }
@@ -98,7 +92,7 @@ std::string checkSavePath(const Call& call, const char* extension, const char* w
 int w_save(Call& call) {
     Document& doc = checkDocument(call);
     const std::string given =
-        checkSavePath(call, ".netj", "a journal; doc:save_snapshot writes a .nets snapshot");
+        checkSavePath(call, "netj", "a journal; doc:save_snapshot writes a .nets snapshot");
     const auto path = resolveWritePath(context(call.L), given, call.name);
     doc.save(path);
     lua_pushstring(call.L, path.c_str());
@@ -109,7 +103,7 @@ int w_save(Call& call) {
 int w_save_snapshot(Call& call) {
     Document& doc = checkDocument(call);
     const std::string given = checkSavePath(
-        call, ".nets", "a snapshot of the model and its shape; doc:save writes a .netj journal");
+        call, "nets", "a snapshot of the model and its shape; doc:save writes a .netj journal");
     const auto path = resolveWritePath(context(call.L), given, call.name);
     doc.saveSnapshot(path);
     lua_pushstring(call.L, path.c_str());

@@ -120,15 +120,6 @@ ExportOptions exportArgs(const Call& call, const TableArgs& args, const std::str
     return o;
 }
 
-std::string extensionOf(const std::filesystem::path& path) {
-    std::string ext = path.extension().string();
-    if (!ext.empty())
-        ext.erase(0, 1);
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    return ext;
-}
-
 void checkFormat(const Call& call, const std::string& given, const std::string& ext, bool rails) {
     const std::vector<std::string> formats = rails ? railExportFormats() : exportFormats();
     if (std::find(formats.begin(), formats.end(), ext) != formats.end())
@@ -145,9 +136,7 @@ void checkFormat(const Call& call, const std::string& given, const std::string& 
 /// (ns.rail_export_formats()). Returns the path written.
 int w_export(Call& call) {
     const Document& doc = checkDocument(call);
-    const std::string given = checkString(call, 2, "path");
-    checkFileName(given, call.name);
-    const std::string ext = extensionOf(given);
+    const auto [given, ext] = checkFileArgument(call, 2);
     std::optional<TableArgs> args; // the options table (argument 3), if given
     if (!lua_isnoneornil(call.L, 3))
         args.emplace(call, 3,
@@ -180,9 +169,7 @@ int w_report(Call& call) {
 /// output folder. Returns the path written.
 int w_write_report(Call& call) {
     const Document& doc = checkDocument(call);
-    const std::string given = checkString(call, 2, "path");
-    checkFileName(given, call.name);
-    const std::string ext = extensionOf(given);
+    const auto [given, ext] = checkFileArgument(call, 2);
     if (ext != "json" && ext != "md" && ext != "csv")
         call.fail("argument 'path' must end in .json, .md or .csv, got \"" + given + "\"");
     std::string table = "pieces";
