@@ -114,17 +114,17 @@ std::string describeParseError(const CLI::App& app, const CLI::ParseError& e) {
             names += (names.empty() ? "" : ", ") + command->get_name();
         return "unknown command '" + extra.front() + "'; the commands are " + names;
     }
-    const bool required = dynamic_cast<const CLI::RequiredError*>(&e) != nullptr;
-    if (required && commands.empty())
-        return (extra.empty() ? "" : unexpectedArguments(app, extra) + ", and ") +
-               "no command given; the commands are:\n" + commandList(app);
-    if (required)
-        if (const std::string missing = missingArgument(*commands.front()); !missing.empty())
-            return (extra.empty() ? "" : unexpectedArguments(*commands.front(), extra) + ", and ") +
-                   missing;
+    const CLI::App& command = commands.empty() ? app : *commands.front();
+    if (dynamic_cast<const CLI::RequiredError*>(&e) != nullptr) {
+        const std::string missing = commands.empty()
+                                        ? "no command given; the commands are:\n" + commandList(app)
+                                        : missingArgument(command);
+        if (!missing.empty())
+            return (extra.empty() ? "" : unexpectedArguments(command, extra) + ", and ") + missing;
+    }
     if (dynamic_cast<const CLI::ExtrasError*>(&e) == nullptr || extra.empty())
         return e.what();
-    return unexpectedArguments(commands.empty() ? app : *commands.front(), extra);
+    return unexpectedArguments(command, extra);
 }
 
 } // namespace netsculpt::cli
