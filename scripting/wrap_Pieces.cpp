@@ -71,6 +71,40 @@ double nonNegative(const TableArgs& args, const char* key, double fallback) {
     return value;
 }
 
+/// The breaking_load of set_material: a finite number of newtons > 0, false for none, or the
+/// fallback when not given.
+std::optional<double> breakingLoadArg(const TableArgs& args, std::optional<double> fallback) {
+    const Call& call = args.call();
+    const int at = args.push("breaking_load");
+    std::optional<double> value = fallback;
+    if (lua_type(call.L, at) == LUA_TBOOLEAN && !lua_toboolean(call.L, at)) {
+        value = std::nullopt;
+    } else if (!lua_isnil(call.L, at)) {
+        const double newtons = lua_tonumber(call.L, at);
+        if (lua_type(call.L, at) != LUA_TNUMBER || !(newtons > 0) || !std::isfinite(newtons))
+            call.bad("breaking_load", at,
+                     "a finite number of newtons > 0 (a knotted bar's breaking load), or false "
+                     "for none");
+        value = newtons;
+    }
+    args.pop();
+    return value;
+}
+
+/// The rope's fields of set_material (and of attach_to_piece's material table) read from
+/// `args`; a field not given keeps its value in `m`.
+Material materialArgs(const TableArgs& args, Material m) {
+    m.stiffness = args.positive("stiffness", m.stiffness);
+    m.compressionRatio = nonNegative(args, "compression_ratio", m.compressionRatio);
+    if (m.compressionRatio > 1)
+        args.call().fail("argument 'compression_ratio' must be from 0 to 1, got " +
+                         formatNumber(m.compressionRatio));
+    m.knotMass = nonNegative(args, "knot_mass", m.knotMass);
+    m.linearDensity = nonNegative(args, "linear_density", m.linearDensity);
+    m.breakingLoad = breakingLoadArg(args, m.breakingLoad);
+    return m;
+}
+
 int w_attach_to_rail(Call& call) {
     Document& doc = checkDocument(call);
     const TableArgs args(call, 2, {"rail", "columns", "spacing", "rows", "bar", "at", "reverse"});
@@ -93,14 +127,37 @@ int w_attach_to_rail(Call& call) {
     return 1;
 }
 
+/// attach_to_piece's rope: the parent's, with the fields its `material` table gives (if any).
+Material childMaterial(const TableArgs& args, const Material& parent) {
+    const int at = args.push("material");
+    if (lua_isnil(args.call().L, at)) {
+        args.pop();
+        return parent;
+    }
+    if (lua_type(args.call().L, at) != LUA_TTABLE)
+        args.call().bad("material", at,
+                        "a table of the rope's fields (stiffness, compression_ratio, knot_mass, "
+                        "linear_density, breaking_load); those not given are the parent's");
+    // Its errors read "attach_to_piece: material: argument 'stiffness' must be ...".
+    const Call inMaterial{args.call().L, "attach_to_piece: material"};
+    const Material m = materialArgs(TableArgs(inMaterial, at,
+                                              {"stiffness", "compression_ratio", "knot_mass",
+                                               "linear_density", "breaking_load"}),
+                                    parent);
+    args.pop();
+    return m;
+}
+
 int w_attach_to_piece(Call& call) {
     Document& doc = checkDocument(call);
-    const TableArgs args(call, 2, {"piece", "gear", "rows", "bar"});
+    const TableArgs args(call, 2, {"piece", "gear", "rows", "bar", "material"});
     AttachToPieceArgs a;
     a.parent = pieceArg(args, "piece");
     a.gear = gearArg(args, "gear", Gear{1, 1});
     a.rows = int(args.whole("rows", std::nullopt, 1, kMaxRows));
     a.bar = args.positive("bar", a.bar);
+    if (doc.sculpture().hasPiece(a.parent))
+        a.material = childMaterial(args, doc.sculpture().piece(a.parent).material);
     const CommandResult created = doc.execute(AttachToPieceCommand{a});
     pushPiece(call.L, 1, created.pieces.at(0));
     return 1;
@@ -180,26 +237,6 @@ int w_disconnect(Call& call) {
     return 0;
 }
 
-/// The breaking_load of set_material: a finite number of newtons > 0, false for none, or the
-/// fallback when not given.
-std::optional<double> breakingLoadArg(const TableArgs& args, std::optional<double> fallback) {
-    const Call& call = args.call();
-    const int at = args.push("breaking_load");
-    std::optional<double> value = fallback;
-    if (lua_type(call.L, at) == LUA_TBOOLEAN && !lua_toboolean(call.L, at)) {
-        value = std::nullopt;
-    } else if (!lua_isnil(call.L, at)) {
-        const double newtons = lua_tonumber(call.L, at);
-        if (lua_type(call.L, at) != LUA_TNUMBER || !(newtons > 0) || !std::isfinite(newtons))
-            call.bad("breaking_load", at,
-                     "a finite number of newtons > 0 (a knotted bar's breaking load), or false "
-                     "for none");
-        value = newtons;
-    }
-    args.pop();
-    return value;
-}
-
 /// doc:set_material{piece, stiffness, compression_ratio, knot_mass, linear_density,
 /// breaking_load}: the fields not given keep their current values.
 int w_set_material(Call& call) {
@@ -208,15 +245,7 @@ int w_set_material(Call& call) {
                          {"piece", "stiffness", "compression_ratio", "knot_mass", "linear_density",
                           "breaking_load"});
     const PieceId piece = pieceArg(args, "piece");
-    Material m = doc.sculpture().piece(piece).material;
-    m.stiffness = args.positive("stiffness", m.stiffness);
-    m.compressionRatio = nonNegative(args, "compression_ratio", m.compressionRatio);
-    if (m.compressionRatio > 1)
-        call.fail("argument 'compression_ratio' must be from 0 to 1, got " +
-                  formatNumber(m.compressionRatio));
-    m.knotMass = nonNegative(args, "knot_mass", m.knotMass);
-    m.linearDensity = nonNegative(args, "linear_density", m.linearDensity);
-    m.breakingLoad = breakingLoadArg(args, m.breakingLoad);
+    const Material m = materialArgs(args, doc.sculpture().piece(piece).material);
     doc.execute(SetMaterialCommand{piece, m});
     return 0;
 }

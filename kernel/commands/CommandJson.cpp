@@ -45,6 +45,9 @@ Json commandArgs(const Command& command) {
                 j["gear"] = gearText(c.args.gear);
                 j["rows"] = c.args.rows;
                 j["bar"] = number(c.args.bar, "bar");
+                // Written only when given: entries without one replay with the default rope.
+                if (c.args.material)
+                    j["material"] = materialJson(*c.args.material, Json::object());
             } else if constexpr (std::is_same_v<T, SplitCommand>) {
                 j["piece"] = c.piece.value;
                 j["column"] = c.column;
@@ -129,6 +132,11 @@ Command decodeCommand(const std::string& name, const Json& args) {
         a.gear = gearFromText(r.text("gear"), name);
         a.rows = r.integer("rows");
         a.bar = r.real("bar");
+        if (r.has("material")) {
+            ObjectReader m(r.raw("material"), "attach_to_piece material");
+            a.material = readMaterial(m);
+            m.finish();
+        }
         out = AttachToPieceCommand{a};
     } else if (name == "split") {
         const PieceId p = piece();

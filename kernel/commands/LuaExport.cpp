@@ -57,6 +57,14 @@ std::string luaList(const std::vector<double>& values) {
     return out + "}";
 }
 
+/// Whether the command gives a piece a breaking load.
+bool givesBreakingLoad(const Command& command) {
+    if (const auto* set = std::get_if<SetMaterialCommand>(&command))
+        return set->material.breakingLoad.has_value();
+    const auto* attach = std::get_if<AttachToPieceCommand>(&command);
+    return attach && attach->args.material && attach->args.material->breakingLoad;
+}
+
 /// How many Lua calls a command becomes (an import: one add_rail per curve).
 int luaCalls(const Command& command) {
     if (const auto* import = std::get_if<ImportRailsCommand>(&command)) return int(import->rails.size());
@@ -70,9 +78,7 @@ class LuaWriter {
         for (const JournalEntry& e : entries) {
             for (RailId id : e.created.rails) rails.insert(id.value);
             for (PieceId id : e.created.pieces) pieces.insert(id.value);
-            const auto* material = std::get_if<SetMaterialCommand>(&e.command);
-            if (e.kind == JournalEntry::Kind::Command && material &&
-                material->material.breakingLoad)
+            if (e.kind == JournalEntry::Kind::Command && givesBreakingLoad(e.command))
                 breakingLoads_ = true;
         }
         // Lua allows 200 locals per function; past that, handles go into two tables.
@@ -133,6 +139,15 @@ class LuaWriter {
             return ", breaking_load = " + luaNumber(*m.breakingLoad);
         return breakingLoads_ ? ", breaking_load = false" : "";
     }
+    /// "stiffness = ..., compression_ratio = ..., knot_mass = ..., linear_density = ..." and
+    /// breakingLoadArg: every field, since the calls keep (set_material) or inherit
+    /// (attach_to_piece) the ones not given.
+    std::string materialFields(const Material& m) const {
+        return "stiffness = " + luaNumber(m.stiffness) +
+               ", compression_ratio = " + luaNumber(m.compressionRatio) +
+               ", knot_mass = " + luaNumber(m.knotMass) +
+               ", linear_density = " + luaNumber(m.linearDensity) + breakingLoadArg(m);
+    }
     static bool given(double at) { return at != 0 || std::signbit(at); }
 
     RailId createdRail(const CommandResult& r, std::size_t i) const { return i < r.rails.size() ? r.rails[i] : RailId{}; }
@@ -160,10 +175,13 @@ class LuaWriter {
         if (a.reverse) args += ", reverse = true";
         line(assign(createdPiece(r, 0)) + "doc:attach_to_rail{" + args + "}");
     }
+    /// The material is always written: without one the call takes the parent's rope, which
+    /// an entry's may not be (an entry without one gave the default rope).
     void write(const AttachToPieceCommand& c, const CommandResult& r) {
         line(assign(createdPiece(r, 0)) + "doc:attach_to_piece{piece = " + piece(c.args.parent) +
              ", gear = " + luaGear(c.args.gear) + ", rows = " + std::to_string(c.args.rows) +
-             ", bar = " + luaNumber(c.args.bar) + "}");
+             ", bar = " + luaNumber(c.args.bar) + ", material = {" +
+             materialFields(c.args.material.value_or(Material{})) + "}}");
     }
     void write(const SplitCommand& c, const CommandResult& r) {
         const std::string call = "doc:split{piece = " + piece(c.piece) + ", column = " + std::to_string(c.column) + "}";
@@ -193,11 +211,8 @@ class LuaWriter {
     }
     void write(const DisconnectCommand& c, const CommandResult&) { line("doc:disconnect{piece = " + piece(c.piece) + "}"); }
     void write(const SetMaterialCommand& c, const CommandResult&) {
-        const Material& m = c.material;
-        line("doc:set_material{piece = " + piece(c.piece) + ", stiffness = " +
-             luaNumber(m.stiffness) + ", compression_ratio = " + luaNumber(m.compressionRatio) +
-             ", knot_mass = " + luaNumber(m.knotMass) +
-             ", linear_density = " + luaNumber(m.linearDensity) + breakingLoadArg(m) + "}");
+        line("doc:set_material{piece = " + piece(c.piece) + ", " + materialFields(c.material) +
+             "}");
     }
     void write(const SetColourCommand& c, const CommandResult&) {
         line("doc:set_colour{piece = " + piece(c.piece) + ", colour = " +

@@ -307,6 +307,8 @@ void Interaction::clickHandle(const Handle& h) {
         args.rows = settings_.newPieceRows;
         args.bar = s.hasPiece(h.piece) ? lastRowBar(s.piece(h.piece), h.column)
                                        : settings_.newPieceBar;
+        if (s.hasPiece(h.piece))
+            args.material = s.piece(h.piece).material; // knotted from its parent's rope
         if (execute(AttachToPieceCommand{args})) selected_ = lastCreated_.pieces.front();
         break;
     }

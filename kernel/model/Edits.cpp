@@ -162,6 +162,8 @@ PieceId attachToPiece(Sculpture& s, const AttachToPieceArgs& a) {
     p.columns = columns;
     p.closed = parent.closed;
     p.top = edge;
+    if (a.material)
+        p.material = *a.material; // checked with the sculpture (checkMaterial)
     const PieceId id = p.id;
     s.pieces.emplace(id, std::move(p));
     return id;

@@ -28,6 +28,10 @@ struct AttachToPieceArgs {
     Gear gear;
     int rows = 1;
     double bar = 0.25; ///< m
+    /// The new piece's rope. The Lua API and the studio give the parent's (a piece knotted into
+    /// another is made of its rope unless said otherwise); empty, the default Material, as in
+    /// journals written before a child took its parent's rope, which replay as they were.
+    std::optional<Material> material = std::nullopt;
 };
 
 RailId addRail(Sculpture& s, const std::string& name, const CurveSpec& spec);

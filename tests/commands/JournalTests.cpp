@@ -544,7 +544,12 @@ TEST_CASE("a journal becomes the equivalent Lua script") {
     CHECK_THAT(lua, Contains("local r1 = doc:add_rail{name = \"top\", points = {{1.0, 0.0, 3.0}, "));
     CHECK_THAT(lua, Contains(", closed = true}\n"));
     CHECK_THAT(lua, Contains("local p1 = doc:attach_to_rail{rail = r1, columns = 12, rows = 6, bar = 0.4}\n"));
-    CHECK_THAT(lua, Contains("local p2 = doc:attach_to_piece{piece = p1, gear = 2, rows = 3, bar = 0.3}\n"));
+    // an entry without a material gave the default rope, which the call is told (else: the
+    // parent's)
+    CHECK_THAT(
+        lua, Contains("local p2 = doc:attach_to_piece{piece = p1, gear = 2, rows = 3, bar = 0.3, "
+                      "material = {stiffness = 2e+05, compression_ratio = 0.01, knot_mass = 0.002, "
+                      "linear_density = 0.006}}\n"));
     CHECK_THAT(lua, Contains("doc:set_rows{piece = p2, rows = 4}\ndoc:set_rows{piece = p2, rows = 5}\n"
                              "doc:undo()\ndoc:undo()\ndoc:redo()\ndoc:redo()\n")); // the merged step is two calls
     CHECK_THAT(lua, Contains("local _, p3 = doc:split{piece = p1, column = 4}\n"));
@@ -557,7 +562,10 @@ TEST_CASE("a journal becomes the equivalent Lua script") {
     CHECK_THAT(lua, Contains("local r4 = doc:add_rail{name = \"spline\", control = {{1.5, 0.0, 5.0}, "));
     CHECK_THAT(lua, Contains(", degree = 2, closed = true, sampling = \"parameter\"}\n"));
     CHECK_THAT(lua, Contains("doc:set_gear{piece = p2, gear = 3}\n"));
-    CHECK_THAT(lua, Contains("local p4 = doc:attach_to_piece{piece = p1, gear = \"1/2\", rows = 2, bar = 0.6}\n"));
+    CHECK_THAT(
+        lua,
+        Contains("local p4 = doc:attach_to_piece{piece = p1, gear = \"1/2\", rows = 2, bar = 0.6, "
+                 "material = {"));
     CHECK_THAT(lua, Contains("doc:set_colour{piece = p1, colour = {0.25, 0.5, 1.0}}\n"));
     CHECK_THAT(lua, Contains("doc:connect_to_rail{piece = p2, rail = r2, at = 0.125, reverse = true}\ndoc:undo()\n"));
     CHECK_THAT(lua, Contains("\nreturn doc\n"));

@@ -61,6 +61,11 @@ TEST_CASE("new net: a click on an open rail spans it, a click on a last row hang
     CHECK_FALSE(sheet.closed);
     CHECK(ui.message() == "attach_to_rail"); // a free rail: nothing to warn of
 
+    Material rope; // the crown net's rope, unlike the default
+    rope.stiffness = 5e4;
+    rope.linearDensity = 0.045;
+    rope.breakingLoad = 1800;
+    scene.doc.execute(SetMaterialCommand{scene.net, rope});
     clickHandle(ui, findHandle(ui, [&](const Handle& h) { return h.kind == HandleKind::LastRow && h.piece == scene.net; }));
     const Piece& child = scene.doc.sculpture().pieces.rbegin()->second;
     REQUIRE_FALSE(child.onRail());
@@ -68,6 +73,7 @@ TEST_CASE("new net: a click on an open rail spans it, a click on a last row hang
     CHECK(child.parentTop().gear == Gear{1, 1});
     CHECK(child.columns == 24);
     CHECK(child.bar.at(0) == 0.35);
+    CHECK(child.material == rope); // knotted from its parent's rope
     // The crown net now has a child: it offers no last-row sphere any more.
     for (const Handle& h : ui.handles()) CHECK_FALSE((h.kind == HandleKind::LastRow && h.piece == scene.net));
 }

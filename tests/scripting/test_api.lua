@@ -218,6 +218,42 @@ T.case("edits: material, colour, rename, connect, gravity", function()
   T.raises(function() doc:set_gravity{0, 0, 0} end, "set_gravity:", "gravity")
 end)
 
+T.case("attach_to_piece: the child is knotted from its parent's rope unless told", function()
+  local doc = ns.new()
+  local top = doc:add_rail{points = T.circle(2, 5, 48), closed = true}
+  local p = doc:attach_to_rail{rail = top, columns = 36, rows = 4, bar = 0.3}
+  doc:set_material{piece = p, stiffness = 5e4, compression_ratio = 0.02, knot_mass = 0.011,
+                   linear_density = 0.045, breaking_load = 1800}
+  local q = doc:attach_to_piece{piece = p, gear = 2, rows = 3, bar = 0.3}
+  local m = q:info().material
+  T.eq(m.stiffness, 5e4); T.eq(m.compression_ratio, 0.02); T.eq(m.knot_mass, 0.011)
+  T.eq(m.linear_density, 0.045); T.eq(m.breaking_load, 1800)
+  -- the fields a material table gives replace the parent's; false takes the breaking load away
+  local r = doc:attach_to_piece{piece = q, rows = 2, bar = 0.3,
+                                material = {stiffness = 7e4, breaking_load = false}}
+  m = r:info().material
+  T.eq(m.stiffness, 7e4); T.eq(m.knot_mass, 0.011); T.eq(m.breaking_load, nil)
+  -- the report checks the child's strength against the rope it inherited
+  local rep = doc:report()
+  T.eq(rep.pieces[2].breaking_load, 1800)
+  T.eq(#rep.pieces_without_breaking_load, 1); T.eq(rep.pieces_without_breaking_load[1], r.id)
+  -- a bad material names itself, and the sculpture is as it was
+  local h = doc:hash()
+  T.raises(function()
+    doc:attach_to_piece{piece = r, rows = 2, bar = 0.3, material = {stiffness = -1}}
+  end, "attach_to_piece: material: argument 'stiffness'", "got -1")
+  T.raises(function()
+    doc:attach_to_piece{piece = r, rows = 2, bar = 0.3, material = {stifness = 1}}
+  end, "attach_to_piece: material: unknown argument \"stifness\"")
+  T.raises(function()
+    doc:attach_to_piece{piece = r, rows = 2, bar = 0.3, material = 5}
+  end, "argument 'material' must be a table", "got 5")
+  T.raises(function()
+    doc:attach_to_piece{piece = r, rows = 2, bar = 0.3, material = {knot_mass = 0, linear_density = 0}}
+  end, "must weigh something")
+  T.eq(doc:hash(), h)
+end)
+
 T.case("undo, redo, hash", function()
   local doc = ns.new()
   local h0 = doc:hash()

@@ -33,7 +33,7 @@ local ring = doc:add_rail{name = "ring", points = pts, closed = true}
 local p = doc:attach_to_rail{rail = ring, columns = 24, rows = 4, bar = 0.4}
 doc:set_material{piece = p, stiffness = 100, breaking_load = 40}
 local q = doc:attach_to_piece{piece = p, gear = 2, rows = 3, bar = 0.3}
-doc:set_material{piece = q, stiffness = 100}
+doc:set_material{piece = q, stiffness = 100, breaking_load = false}
 doc:set_rows{piece = q, rows = 5}
 doc:undo()
 doc:redo()
