@@ -197,7 +197,8 @@ LiveRelaxer::ResidualCheck& LiveRelaxer::residualCheckFor(const MassSpringSystem
         residualCheck_->field.setLaw(system);
     } else {
         residualCheck_.reset();
-        residualCheck_.emplace(ResidualCheck{ForceField(system), system.barA, system.barB, system.fixed, {}, {}});
+        residualCheck_.emplace(
+            ResidualCheck{ForceField(system), system.barA, system.barB, system.fixed, {}, {}, {}});
     }
     return *residualCheck_;
 }
@@ -213,27 +214,11 @@ bool LiveRelaxer::extrapolate(const MassSpringSystem& previous, MassSpringSystem
     // The residual test's force field is made ready at a drag's first step, which takes more
     // than a frame anyway (no predictor yet), so that the second one does not pay for it.
     ResidualCheck& check = residualCheckFor(next);
-    if (!lastStep_ || lastStep_->restChange.size() != restChange.size()) return false;
-    // This edit as a multiple of the last one: rho = <now, last> / <last, last>, and what is left
-    // over must be small.
-    double dot = 0, lastSquared = 0, nowSquared = 0;
-    for (std::size_t b = 0; b < restChange.size(); ++b) {
-        dot += restChange[b] * lastStep_->restChange[b];
-        lastSquared += lastStep_->restChange[b] * lastStep_->restChange[b];
-        nowSquared += restChange[b] * restChange[b];
-    }
-    if (!(lastSquared > 0) || !(nowSquared > 0)) return false;
-    const double rho = dot / lastSquared;
-    double offSquared = 0;
-    for (std::size_t b = 0; b < restChange.size(); ++b) {
-        const double off = restChange[b] - rho * lastStep_->restChange[b];
-        offSquared += off * off;
-    }
-    if (!(rho > 0 && rho <= 2) || offSquared > kRepeatTolerance * kRepeatTolerance * nowSquared) return false;
-    // Kept only when it is nearer the new equilibrium than the shape it starts from.
-    check.predicted.assign(next.position.begin(), next.position.end());
-    for (std::size_t j = 0; j < next.knotCount(); ++j)
-        if (!next.fixed[j]) check.predicted[j] += lastStep_->displacement[j] * rho;
+    // This edit as a multiple of the last one (a drag's next step), and the path's shapes where
+    // it ends.
+    const std::optional<double> rho = path_.ratio(restChange, kRepeatTolerance);
+    if (!rho)
+        return false;
     check.force.resize(next.knotCount());
     auto worst = [&](const std::vector<Vec3>& at) {
         check.field.evaluate(at, check.force);
@@ -242,9 +227,22 @@ bool LiveRelaxer::extrapolate(const MassSpringSystem& previous, MassSpringSystem
             if (!next.fixed[j]) r = std::max(r, check.field.residualOf(j, check.force[j]));
         return r;
     };
-    if (!(worst(check.predicted) < worst(next.position))) return false;
-    next.position.swap(check.predicted);
-    return true;
+    // The prediction of the lowest residual, kept only when it is nearer the new equilibrium
+    // than the shape it starts from.
+    double best = worst(next.position);
+    bool moved = false;
+    for (int degree = 1; degree <= path_.degrees(); ++degree) {
+        path_.predict(*rho, degree, next.fixed, check.predicted);
+        const double residual = worst(check.predicted);
+        if (residual < best) {
+            best = residual;
+            check.best.swap(check.predicted);
+            moved = true;
+        }
+    }
+    if (moved)
+        next.position.swap(check.best);
+    return moved;
 }
 
 std::vector<double> LiveRelaxer::refinedStart(MassSpringSystem& system) const {
@@ -339,6 +337,7 @@ void LiveRelaxer::runPreview(JobRun& run) {
     o.continuation = relaxer_->name() == "fast";
     o.singlePrecisionSteps = options_.singlePrecisionSteps;
     o.focusAfterHint = true; // a slack net's folds settle on their own after a drag
+    o.reuseFactor = true;    // along a drag, a step often needs no new factorization
     o.hintBeforeCancel = true; // a drag as fast as the frames still moves the net
     run.state.stiffnessScale = scale;
     double lastShown = 0;
@@ -360,7 +359,7 @@ void LiveRelaxer::runPreview(JobRun& run) {
         if (!hasPending()) finish(run, "cancelled", soft.position); // else a newer run follows
         previewCancelled_ = hasPending();
         unmoved = soft.position == start.positions;
-        lastStep_.reset();
+        path_.clear();
     } else {
         run.state.converged = r.converged;
         finish(run, r.stopReason, soft.position);
@@ -398,16 +397,14 @@ void LiveRelaxer::setShapePublisher(JobRun& run, RelaxOptions& o, std::size_t kn
     };
 }
 
-// A converged preview after a rest-length edit is the step the next one may repeat (LastStep).
+// A converged preview after a rest-length edit is a step of the path the next one may go on
+// along (DragPath.h).
 void LiveRelaxer::rememberStep(bool converged, PreviewStart& start, const MassSpringSystem& soft) {
     if (!converged || start.restChange.empty()) {
-        lastStep_.reset();
+        path_.clear();
         return;
     }
-    LastStep step{std::vector<Vec3>(soft.knotCount()), std::move(start.restChange)};
-    for (std::size_t j = 0; j < soft.knotCount(); ++j)
-        step.displacement[j] = soft.position[j] - start.positions[j];
-    lastStep_ = std::move(step);
+    path_.add(start.positions, soft.position, std::move(start.restChange), kRepeatTolerance);
 }
 
 // The material's stiffness in one run, so the backend keeps its own continuation (restarting it
@@ -430,10 +427,10 @@ void LiveRelaxer::runRefine(JobRun& run) {
     // next preview goes on as if there had been no refine: its hint is the law that shape was
     // relaxed under, not the material's, and a drag's next step is still predicted.
     std::optional<MassSpringSystem> beforeRefine = std::move(previous_);
-    std::optional<LastStep> stepBeforeRefine = std::move(lastStep_);
+    DragPath pathBeforeRefine = std::move(path_);
     previous_.reset();
     previewCancelled_ = false;
-    lastStep_.reset();
+    path_.clear();
     MassSpringSystem& system = run.job.system;
     const RelaxResult r = refineRun(system, o);
     run.state.steps = r.steps;
@@ -449,7 +446,7 @@ void LiveRelaxer::runRefine(JobRun& run) {
     }
     if (cancelled && hasPending() && beforeRefine) {
         previous_ = std::move(beforeRefine);
-        lastStep_ = std::move(stepBeforeRefine);
+        path_ = std::move(pathBeforeRefine);
     } else {
         previous_ = std::move(system);
     }

@@ -17,6 +17,11 @@
 // Warm starts: each preview passes the backend the tensions its start shape had in the system
 // before the edit (startTensions), which the fast path turns into a predictor step: after a small
 // edit it converges in two or three Newton iterations instead of redoing its soft start stage.
+// Along a drag (the same rest-length edit again and again) a step starts where the path through
+// the last steps' shapes leads (DragPath.h), a few thousandths of a knot weight off its
+// equilibrium on a taut net, and the fast path solves its one Newton step with the factor the
+// last step left (RelaxOptions::reuseFactor) when that takes a few solves: most steps of a drag
+// then factorize nothing.
 // A refine after an edit of a refined shape first tries that shape, carried across the edit, with
 // the tensions it had (refineRun), and goes on from the preview's shape if that does not converge
 // within a few iterations.
@@ -24,6 +29,7 @@
 // Publication: the worker builds a new immutable LiveState and swaps a shared_ptr under a mutex;
 // latest() copies the pointer (the UI reads a state nobody writes).
 
+#include "interaction/DragPath.h"
 #include "physics/Forces.h"
 #include "physics/MassSpringSystem.h"
 #include "physics/Relaxer.h"
@@ -175,19 +181,16 @@ class LiveRelaxer {
     /// tried from that shape first (kRefinedStartSteps in LiveRelaxer.cpp); the result of the run
     /// whose positions `system` ends with, the steps of both.
     RelaxResult refineRun(MassSpringSystem& system, const RelaxOptions& options);
-    /// Worker thread only: what the last preview did when it converged after a rest-length edit
-    /// of the shape before it: each knot's displacement, m, and each bar's rest-length change, m.
-    /// The next edit that repeats it (a multiple of the same change, the next step of a drag)
-    /// starts that much further on: a secant predictor, so one Newton iteration corrects it.
-    struct LastStep {
-        std::vector<Vec3> displacement;
-        std::vector<double> restChange;
-    };
-    std::optional<LastStep> lastStep_;
-    /// When `next` repeats the last step's edit of `previous` (see LastStep), moves its free knots
-    /// on by the last step's displacement times the ratio of the edits, if that lowers the residual,
-    /// and returns true. `restChange` gets next's rest lengths minus previous's whenever `next` is a
-    /// rest-length edit of the shape `previous` ended at (else it is left empty).
+    /// Worker thread only: the shapes the last previews converged in after rest-length edits
+    /// that repeat one another (a drag's steps, DragPath.h). The next edit that repeats them
+    /// starts where the path through them leads, so one Newton iteration, or a step with the last
+    /// factor, corrects it.
+    DragPath path_;
+    /// When `next` repeats the last step's edit of `previous` (see path_), moves its free knots
+    /// on to the path's prediction of the lowest residual (of degree 1, the secant, to
+    /// DragPath::kMaxDegree), if that lowers the residual, and returns true. `restChange` gets
+    /// next's rest lengths minus previous's whenever `next` is a rest-length edit of the shape
+    /// `previous` ended at (else it is left empty).
     bool extrapolate(const MassSpringSystem& previous, MassSpringSystem& next, std::vector<double>& restChange);
     /// How a preview starts (worker thread only): `soft`'s positions carried on from a cancelled
     /// preview, new rows continued, a repeated edit extrapolated (LastStep); the hint from the
@@ -204,7 +207,7 @@ class LiveRelaxer {
     /// `scale`) as often as the publish interval asks; `lastShown`: when one was last shown.
     void setShapePublisher(JobRun& run, RelaxOptions& o, std::size_t knots, double scale,
                            double lastShown);
-    /// After a preview: its step kept as lastStep_ when it converged after a rest-length edit.
+    /// After a preview: its step added to path_ when it converged after a rest-length edit.
     void rememberStep(bool converged, PreviewStart& start, const MassSpringSystem& soft);
     /// Worker thread only: extrapolate()'s residual test, kept for the topology of its last use
     /// (a drag's steps share it; only the law is updated): the force field, the bars and fixed
@@ -213,7 +216,7 @@ class LiveRelaxer {
         ForceField field;
         std::vector<std::uint32_t> barA, barB;
         std::vector<std::uint8_t> fixed;
-        std::vector<Vec3> predicted, force;
+        std::vector<Vec3> predicted, best, force;
     };
     std::optional<ResidualCheck> residualCheck_;
     /// The residual check with `system`'s topology and law (UserError as ForceField's).

@@ -86,6 +86,14 @@ struct RelaxOptions {
     /// at its boundary can choose another way down for a slack piece (docs/performance.md). Others
     /// ignore it. It changes how the equilibrium is found, never what counts as converged.
     bool focusAfterHint = false;
+    /// Fast backend: the first iteration seeded with startTensions solves with the factor the
+    /// relaxer's last run on the same topology left, when its matrix was of the same scale (a
+    /// chord step: a solve instead of a factorization), and the iterations after it factorize as
+    /// usual. Worth it where a run starts within a few hundredths of a knot weight of its
+    /// equilibrium, as the studio's preview does along a drag (interaction/DragPath.h). The run
+    /// then depends on the runs before it (deterministically: the same calls give the same bits).
+    /// Others ignore it. It changes how the equilibrium is found, never what counts as converged.
+    bool reuseFactor = false;
     /// Fast backend: a cancel during the iterations seeded with startTensions waits until one of
     /// them has reached a state good enough to keep (at most those few iterations). The studio's
     /// preview after an edit: a drag as fast as the frames cancels each run within its first

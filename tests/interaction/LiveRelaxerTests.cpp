@@ -195,6 +195,35 @@ TEST_CASE("live relaxer: after a drag step the preview re-converges in a few New
     CHECK(maxDistance(warmLonger.position, coldLonger.position) < 1e-8);
 }
 
+TEST_CASE("live relaxer: along a drag the previews start where the last steps lead and stay on the "
+          "equilibrium a cold start finds",
+          "[live]") {
+    // Six steps of uneven size (a mouse does not move evenly): from the fourth on the path
+    // through the last shapes is a cubic (DragPath.h), and the fast path may step with the last
+    // factor (RelaxOptions::reuseFactor); every preview must still be the equilibrium.
+    Scene scene;
+    scene.doc.execute(SetRowsCommand{scene.net, 20});
+    LiveRelaxOptions options;
+    options.backend = "fast";
+    LiveRelaxer live(options);
+    REQUIRE(previewAndShow(scene.doc, live, 1)->converged);
+    double bar = 0.35;
+    std::uint64_t generation = 1;
+    for (double step : {0.004, 0.005, 0.0045, 0.006, 0.005, 0.007}) {
+        bar *= 1 + step;
+        scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt, bar}, true);
+        const auto shown = previewAndShow(scene.doc, live, ++generation);
+        INFO("step " << generation - 1 << ": " << shown->steps << " Newton iterations, residual "
+                     << shown->residual);
+        CHECK(shown->converged);
+        CHECK(shown->residual < options.previewTolerance);
+        CHECK(shown->steps <= 2);
+        const MassSpringSystem cold = softEquilibrium(scene.doc, {}, 1e-9);
+        const MassSpringSystem warm = softEquilibrium(scene.doc, shown->positions, 1e-9);
+        CHECK(maxDistance(warm.position, cold.position) < 1e-8);
+    }
+}
+
 TEST_CASE("live relaxer: a slack sheet between two rails re-converges after a bar-length step, on "
           "the equilibrium a plain warm relaxation from the shape shown reaches", "[live]") {
     Document doc;

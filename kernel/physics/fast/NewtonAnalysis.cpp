@@ -5,6 +5,7 @@
 namespace netsculpt {
 
 void NewtonAnalysis::analyse(const MassSpringSystem& system) {
+    factorStiffness = 0;
     fixed = system.fixed;
     barA = system.barA;
     barB = system.barB;

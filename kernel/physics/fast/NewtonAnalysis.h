@@ -28,6 +28,10 @@ struct NewtonAnalysis {
     std::vector<std::int64_t> barPair;        ///< bar -> block pair, -1 when an end is fixed
     std::vector<std::array<std::uint32_t, 2>> pairs; ///< free indices of the blocks' nodes
     SupernodalCholesky cholesky;
+    /// The mean k_s of the bars (N/m) of the system whose matrix cholesky last factorized
+    /// successfully (0: none since the analysis): a later run takes chord steps with that factor
+    /// only for a system about as stiff (RelaxOptions::reuseFactor).
+    double factorStiffness = 0;
 
     // A run's storage (NewtonRun's members of the same names). Every run sets what it reads: its
     // law into the field (ForceField::setLaw), its start into the vectors.
@@ -35,6 +39,7 @@ struct NewtonAnalysis {
     std::vector<Vec3> x, trial, force, step, bend, bendThird, bestX;
     std::vector<double> tension, kCompression, rhs, linearResidual, barTerm, weightOf,
         dampingUnit;
+    std::vector<double> krylovX, krylovZ, krylovD, krylovQ; ///< NewtonRun::solveByPreviousFactor
     HugePageArray barBlock; ///< written whole by every assembly
     HugePageArray values;   ///< likewise
 

@@ -112,6 +112,8 @@ struct NewtonStatistics {
     std::int64_t softIterations = 0;
     /// iterations seeded with RelaxOptions::startTensions (0: none)
     std::int64_t hintIterations = 0;
+    /// of them, steps solved with the factor of a previous run (RelaxOptions::reuseFactor)
+    std::int64_t reusedFactorSteps = 0;
     std::int64_t iterations = 0;     ///< all Newton iterations (= RelaxResult::steps)
     std::int64_t factorizations = 0; ///< numeric factorizations, failed ones included
     std::int64_t failedFactorizations = 0; ///< not positive definite (then the shift grows)

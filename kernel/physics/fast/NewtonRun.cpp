@@ -165,6 +165,7 @@ bool NewtonRun::factorize() {
         values_, shift_ * meanDiagonal_, pool_.get(),
         single_ ? SupernodalCholesky::Precision::Single : SupernodalCholesky::Precision::Double);
     stats_.factorSeconds += secondsSince(t0);
+    analysis_.factorStiffness = ok ? meanStiffness() : 0;
     ++stats_.factorizations;
     if (single_)
         ++stats_.singleFactorizations;
@@ -197,26 +198,7 @@ void NewtonRun::solveInto(std::vector<Vec3>& out) {
 /// out = (H + mu I) p at the free knots (3 per free knot), p = step_ and H as assembled in
 /// values_ (the diagonal blocks, then the pairs' blocks).
 void NewtonRun::multiplyStep(std::vector<double>& out) const {
-    const std::size_t freeCount = analysis_.freeKnots.size();
-    const double mu = shift_ * meanDiagonal_;
-    for (std::size_t f = 0; f < freeCount; ++f) {
-        const double* h = &values_[9 * f];
-        const Vec3& p = step_[analysis_.freeKnots[f]];
-        for (std::size_t i = 0; i < 3; ++i)
-            out[3 * f + i] = h[3 * i] * p.x + h[3 * i + 1] * p.y + h[3 * i + 2] * p.z +
-                             mu * (i == 0 ? p.x : i == 1 ? p.y : p.z);
-    }
-    const std::size_t pairBase = 9 * freeCount;
-    for (std::size_t k = 0; k < analysis_.pairs.size(); ++k) {
-        const double* h = &values_[pairBase + 9 * k];
-        const auto [a, b] = analysis_.pairs[k];
-        const Vec3& pa = step_[analysis_.freeKnots[a]];
-        const Vec3& pb = step_[analysis_.freeKnots[b]];
-        for (std::size_t i = 0; i < 3; ++i) {
-            out[3 * a + i] += h[3 * i] * pb.x + h[3 * i + 1] * pb.y + h[3 * i + 2] * pb.z;
-            out[3 * b + i] += h[i] * pa.x + h[3 + i] * pa.y + h[6 + i] * pa.z;
-        }
-    }
+    multiply([&](std::size_t f) { return step_[analysis_.freeKnots[f]]; }, out);
 }
 
 /// A step solved with a single-precision factor, refined in double: r = F - (H + mu I) p, then
@@ -432,6 +414,7 @@ void NewtonRun::hintedStart(double tolerance) {
         }
         return factored;
     };
+    previousFactorStep(tolerance);
     const std::int64_t first = steps_;
     while (steps_ - first < kHintIterations && !(residual_ < tolerance) &&
            !hintStopRequested(steps_ > first, startResidual)) {

@@ -103,6 +103,16 @@ constexpr double kHintKeepResidual = 1e4;
 // second iteration one (netsculpt-bench-live); the rope's stiffness to 1e-6 goes to double.
 constexpr double kSingleAccuracy = 0.5;
 constexpr int kSingleRefinements = 2;
+// With RelaxOptions::reuseFactor a hinted start first takes one step solved with the last run's
+// factor (NewtonRun::previousFactorStep), when that factor's system had a mean k_s within
+// kChordScale of this one's: conjugate gradients preconditioned with it, at most
+// kMaxReusedIterations (each a solve and a product: a seventh of a factorization at 20,000 knots).
+// Only from a start within kReuseBelow knot weights of its equilibrium under the hinted law:
+// further off (a drag's first steps, which have no path to predict them yet) the old factor
+// needs more iterations than a factorization costs.
+constexpr double kChordScale = 2;
+constexpr int kMaxReusedIterations = 6;
+constexpr double kReuseBelow = 0.05;
 // Line search: Armijo's sufficient decrease, at most kMaxBacktracks halvings (safeguarded
 // quadratic interpolation).
 constexpr double kArmijo = 1e-4;
@@ -182,6 +192,13 @@ constexpr int kRoundingPatience = 10;
 
 using Clock = std::chrono::steady_clock;
 
+inline double dot(const std::vector<double>& a, const std::vector<double>& b) {
+    double sum = 0;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        sum += a[i] * b[i];
+    return sum;
+}
+
 inline double secondsSince(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
@@ -238,6 +255,31 @@ class NewtonRun {
     void applyWindOperator(const std::vector<double>& v, std::vector<double>& out);
     void solveInto(std::vector<Vec3>& out);
     void multiplyStep(std::vector<double>& out) const;
+    /// out = (H + mu I) p at the free knots (3 per free knot), H as assembled in values_ (the
+    /// diagonal blocks, then the pairs' blocks), p's block of free knot f given by p(f).
+    template <class Vector> void multiply(Vector p, std::vector<double>& out) const {
+        const std::size_t freeCount = analysis_.freeKnots.size();
+        const double mu = shift_ * meanDiagonal_;
+        for (std::size_t f = 0; f < freeCount; ++f) {
+            const double* h = &values_[9 * f];
+            const Vec3 v = p(f);
+            for (std::size_t i = 0; i < 3; ++i)
+                out[3 * f + i] = h[3 * i] * v.x + h[3 * i + 1] * v.y + h[3 * i + 2] * v.z +
+                                 mu * (i == 0   ? v.x
+                                       : i == 1 ? v.y
+                                                : v.z);
+        }
+        const std::size_t pairBase = 9 * freeCount;
+        for (std::size_t k = 0; k < analysis_.pairs.size(); ++k) {
+            const double* h = &values_[pairBase + 9 * k];
+            const auto [a, b] = analysis_.pairs[k];
+            const Vec3 pa = p(a), pb = p(b);
+            for (std::size_t i = 0; i < 3; ++i) {
+                out[3 * a + i] += h[3 * i] * pb.x + h[3 * i + 1] * pb.y + h[3 * i + 2] * pb.z;
+                out[3 * b + i] += h[i] * pa.x + h[3 + i] * pa.y + h[6 + i] * pa.z;
+            }
+        }
+    }
     bool refineSingleStep(double tolerance);
     void bendStep();
     void bendThirdOrder();
@@ -255,6 +297,13 @@ class NewtonRun {
     double energyChange(double alpha);
     double takeStep(double alpha, bool mixed);
     void hintedStart(double tolerance);
+    // ReusedFactor.cpp (RelaxOptions::reuseFactor)
+    void previousFactorStep(double tolerance);
+    bool solveByPreviousFactor(double tolerance);
+    void precondition(const std::vector<double>& in, std::vector<double>& out);
+    bool linearResidualWithin(const std::vector<double>& r, double tolerance) const;
+    bool previousFactorFits() const;
+    double meanStiffness() const;
     void setHintedLaw();
     double materialLawResidual();
     bool hintStopRequested(bool moved, double startResidual);

@@ -16,13 +16,6 @@ namespace netsculpt::newton {
 
 namespace {
 
-double dot(const std::vector<double>& a, const std::vector<double>& b) {
-    double sum = 0;
-    for (std::size_t i = 0; i < a.size(); ++i)
-        sum += a[i] * b[i];
-    return sum;
-}
-
 using Operator = std::function<void(const std::vector<double>&, std::vector<double>&)>;
 
 /// GMRES for A x = b from x (A applied by `apply`): at most `vectors` Krylov vectors, until the
