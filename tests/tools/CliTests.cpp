@@ -15,6 +15,7 @@
 #include <sstream>
 #include <sys/file.h>
 #include <unistd.h>
+#include <utility>
 #include <vector>
 
 using namespace netsculpt::test;
@@ -147,6 +148,55 @@ TEST_CASE("A missing argument is named as the usage line names it, with what it 
                Contains("Usage: netsculpt export [OPTIONS] DOC FILE...\n"));
     CHECK_THAT(runCli("run --help").output,
                Contains("Usage: netsculpt run [OPTIONS] SCRIPT [ARGS...]\n"));
+}
+
+TEST_CASE("A command's help lists each positional by name and what it is, its options with their "
+          "type, range and default",
+          "[cli]") {
+    // It listed "DOC TEXT REQUIRED", CLI11's type and flag, which the usage line already says.
+    const std::string doc = "A journal (.netj) or snapshot (.nets)";
+    const std::vector<std::pair<std::string, std::vector<std::pair<std::string, std::string>>>>
+        commands{
+            {"run",
+             {{"SCRIPT", "The Lua script"},
+              {"ARGS...", "Arguments for the script (its global `arg`); put -- before ones "
+                          "starting with -"}}},
+            {"replay", {{"JOURNAL", "The journal (.netj)"}}},
+            {"to-lua", {{"JOURNAL", "The journal (.netj) or snapshot (.nets)"}}},
+            {"relax", {{"DOC", doc}}},
+            {"export",
+             {{"DOC", doc},
+              {"FILE...", "The files to write, by extension: .csv .obj .ply .glb .json .svg .png "
+                          ".dxf (with --rails: .csv .obj .dxf)"}}},
+            {"report", {{"DOC", doc}}}};
+    for (const auto& [command, positionals] : commands) {
+        INFO(command);
+        const Ran help = runCli(command + " --help");
+        REQUIRE(help.exitCode == 0);
+        const auto start = help.output.find("\nPositionals:\n");
+        REQUIRE(start != std::string::npos);
+        const auto end = help.output.find("\n\n", start + 1);
+        REQUIRE(end != std::string::npos);
+        std::istringstream section(help.output.substr(start + 14, end - start - 14));
+        std::string line;
+        for (const auto& [name, description] : positionals) {
+            REQUIRE(std::getline(section, line));
+            INFO(line);
+            // "  DOC", the padding to the description's column, the description.
+            CHECK_THAT(line, StartsWith("  " + name + "  "));
+            const auto text = line.find_first_not_of(' ', name.size() + 2);
+            REQUIRE(text != std::string::npos);
+            CHECK(text == 30); // CLI11's first column, as the options' descriptions
+            CHECK(line.substr(text) == description);
+        }
+        CHECK_FALSE(std::getline(section, line)); // no other positional
+        CHECK_THAT(help.output, !Contains("REQUIRED"));
+    }
+    // The options keep their type, range and default.
+    CHECK_THAT(runCli("relax --help").output,
+               Contains("\n  --tolerance FLOAT:NUMBER in (0, 0.01]=1e-06\n") &&
+                   Contains("\n  --backend TEXT:{auto,fast,rk4,bullet}=auto\n"));
+    CHECK_THAT(runCli("run --help").output, Contains("\n  --lib TEXT:DIR ...  "));
 }
 
 TEST_CASE("export --rails writes the rails alone, unrelaxed, and import_rails reads them back",

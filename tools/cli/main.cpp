@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <memory>
 #include <new>
 #include <string_view>
 
@@ -80,6 +81,18 @@ CLI::Validator wholeNumberFrom(int lowest) {
         },
         "WHOLE NUMBER >= " + std::to_string(lowest));
 }
+
+/// CLI11's help, but a positional is listed as the usage line names it (DOC, FILE...) beside what
+/// it is: CLI11 writes its type and whether it is required ("DOC TEXT REQUIRED"), words that tell
+/// a user nothing the usage line does not. An option keeps them: its type, range and default.
+class HelpFormatter : public CLI::Formatter {
+  public:
+    std::string make_option_opts(const CLI::Option* option) const override {
+        if (option->get_positional())
+            return option->get_items_expected_max() > 1 ? "..." : "";
+        return CLI::Formatter::make_option_opts(option);
+    }
+};
 
 void addRun(CLI::App& app, Options& o) {
     CLI::App* run = app.add_subcommand("run", "Run a sculpture script (sandboxed unless --unsafe)");
@@ -264,6 +277,7 @@ int scriptArgumentsAfterDashes(const CLI::App& app, int argc, char** argv) {
 int main(int argc, char** argv) {
     netsculpt::keepFreedMemoryForReuse();
     CLI::App app{"netsculpt: design knotted-rope net sculptures hung from rails", "netsculpt"};
+    app.formatter(std::make_shared<HelpFormatter>()); // before the commands, which copy it
     Options o;
     app.set_version_flag("--version", "netsculpt " NETSCULPT_VERSION);
     app.add_flag("--quiet,-q", o.quiet,
