@@ -74,19 +74,55 @@ TEST_CASE("Help, version and usage errors", "[cli]") {
         CHECK(r.exitCode == 2);
         CHECK_THAT(r.output, StartsWith("netsculpt: error: "));
     }
-    // A misspelt command or option is named, in the order given, with the nearest option.
+    // A misspelt command or option is named, with the nearest option.
     CHECK_THAT(runCli("reprot x.nets").output,
                Contains("unknown command 'reprot'; the commands are run, replay, to-lua, relax, "
                         "export, report"));
     CHECK_THAT(runCli("relax d.netj --tolerence 1e-7").output,
-               Contains("unexpected arguments: --tolerence 1e-7 (--tolerence: did you mean "
-                        "--tolerance?)"));
+               Contains("unknown option --tolerence (did you mean --tolerance?)\n"));
     CHECK_THAT(runCli("report d.netj --jsn").output, Contains("did you mean --json?"));
     CHECK_THAT(runCli("relax d.netj --frobnicate").output,
-               Contains("unexpected arguments: --frobnicate\n"));
+               Contains("unknown option --frobnicate\n"));
     // A short option is offered only for a near word: "--bogus" was "did you mean --out?".
-    CHECK_THAT(runCli("relax d.netj --bogus").output, Contains("unexpected arguments: --bogus\n"));
-    CHECK_THAT(runCli("relax d.netj --ot").output, Contains("(--ot: did you mean --out?)"));
+    CHECK_THAT(runCli("relax d.netj --bogus").output, Contains("unknown option --bogus\n"));
+    CHECK_THAT(runCli("relax d.netj --ot").output,
+               Contains("unknown option --ot (did you mean --out?)\n"));
+}
+
+TEST_CASE("A misspelt option followed by its value is named alone, not the document after it",
+          "[cli]") {
+    // `relax --tolerence 1 out/x.netj` said "unexpected arguments: --tolerence out/x.netj": CLI11
+    // took the 1 for the document and listed the document as unexpected.
+    const std::string tolerance = "netsculpt: error: unknown option --tolerence (did you mean "
+                                  "--tolerance?)\nRun with --help for more information.\n";
+    for (const char* arguments :
+         {"relax --tolerence 1 out/x.netj", "relax out/x.netj --tolerence 1",
+          "relax --tolerence=1 out/x.netj", "-q relax --tolerence 1 out/x.netj",
+          "relax --tolerence 1 out/x.netj -q"}) {
+        INFO(arguments);
+        const Ran r = runCli(arguments);
+        CHECK(r.exitCode == 2);
+        CHECK(r.output == tolerance);
+    }
+    for (const auto& [arguments, message] :
+         {std::pair{"export --tube-radus 0.01 d.netj net.obj",
+                    "unknown option --tube-radus (did you mean --tube-radius?)\n"},
+          std::pair{"report --frobnicate 1 d.netj", "unknown option --frobnicate\n"},
+          std::pair{"relax d.netj -x", "unknown option -x\n"},
+          std::pair{"--quite relax d.netj", "unknown option --quite\n"},
+          std::pair{"relax --tolerence 1 --bogus 2 d.netj",
+                    "unknown options --tolerence (did you mean --tolerance?), --bogus\n"},
+          std::pair{"run x.lua --bogus 2",
+                    "unknown option --bogus (a script's own arguments that start with - go after "
+                    "--: netsculpt run SCRIPT -- --bogus)\n"},
+          // Without an unknown option, arguments left over are the user's own, listed.
+          std::pair{"relax a.netj b.netj c.netj", "unexpected arguments: b.netj c.netj\n"},
+          std::pair{"relax d.netj -3", "unexpected arguments: -3\n"}}) {
+        INFO(arguments);
+        const Ran r = runCli(arguments);
+        CHECK(r.exitCode == 2);
+        CHECK_THAT(r.output, StartsWith("netsculpt: error: " + std::string(message)));
+    }
 }
 
 TEST_CASE("Without a command, the error lists the commands and how to get help", "[cli]") {
@@ -109,9 +145,10 @@ TEST_CASE("Without a command, the error lists the commands and how to get help",
     // An option that is not a global one is named too, with the nearest one.
     const Ran misspelt = runCli("--quite");
     CHECK(misspelt.exitCode == 2);
-    CHECK_THAT(misspelt.output,
-               StartsWith("netsculpt: error: unexpected arguments: --quite (--quite: did you mean "
-                          "--quiet?), and no command given; the commands are:\n  run "));
+    CHECK_THAT(
+        misspelt.output,
+        StartsWith("netsculpt: error: unknown option --quite (did you mean --quiet?), and no "
+                   "command given; the commands are:\n  run "));
 }
 
 TEST_CASE("A missing argument is named as the usage line names it, with what it is", "[cli]") {
@@ -136,7 +173,7 @@ TEST_CASE("A missing argument is named as the usage line names it, with what it 
           std::pair{"report --json", "report needs DOC, a journal (.netj) or snapshot (.nets); "
                                      "usage: netsculpt report DOC\n"},
           std::pair{"export d.netj --frobnicate",
-                    "unexpected arguments: --frobnicate, and export needs FILE..., the files"}}) {
+                    "unknown option --frobnicate, and export needs FILE..., the files"}}) {
         INFO(arguments);
         const Ran r = runCli(arguments);
         CHECK(r.exitCode == 2);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <utility>
 #include <vector>
 
 namespace netsculpt::cli {
@@ -43,19 +44,47 @@ std::string nearestOption(const CLI::App& command, const std::string& given) {
     return best;
 }
 
-/// "unexpected arguments: ..." in the order given, with the option of `command` nearest a
-/// misspelt one, or where a script's own options go.
+/// The option an argument names ("--tolerence" of "--tolerence=1", "-x"), "" when it is a value
+/// ("out/x.netj", "-3", "-") or an option `command` or the program has (given after "--").
+std::string unknownOption(const CLI::App& command, const std::string& argument) {
+    if (argument.size() < 2 || argument[0] != '-' ||
+        std::isdigit(static_cast<unsigned char>(argument[1])) != 0 || argument[1] == '.')
+        return {};
+    const std::string name = argument.substr(0, argument.find('='));
+    for (const CLI::App* app = &command; app != nullptr; app = app->get_parent())
+        if (app->get_option_no_throw(name) != nullptr)
+            return {};
+    return name;
+}
+
+/// "unknown option --tolerence (did you mean --tolerance?)" when arguments left over name options
+/// `command` does not have, with the nearest option of each misspelt one, or where a script's own
+/// options go. Only the options are named: CLI11 took the value given after one for the next
+/// positional (`relax --tolerence 1 x.netj` read 1 as the document), so the arguments left over
+/// beside them are not the ones the user gave too many. Else "unexpected arguments: ..." in the
+/// order given.
 std::string unexpectedArguments(const CLI::App& command, const std::vector<std::string>& extra) {
-    std::string text = "unexpected arguments:";
+    std::vector<std::pair<std::string, std::string>> unknown; // the option, the argument
     for (const std::string& argument : extra)
-        text += " " + argument;
-    for (const std::string& argument : extra)
-        if (argument.starts_with("--"))
-            if (const std::string near = nearestOption(command, argument); !near.empty())
-                return text + " (" + argument + ": did you mean " + near + "?)";
-    if (command.get_name() == "run" && extra.front().starts_with("-"))
-        return text + " (a script's own arguments that start with - go after --: netsculpt run " +
-               "SCRIPT -- " + extra.front() + ")";
+        if (std::string name = unknownOption(command, argument); !name.empty())
+            unknown.emplace_back(std::move(name), argument);
+    if (unknown.empty()) {
+        std::string text = "unexpected arguments:";
+        for (const std::string& argument : extra)
+            text += " " + argument;
+        return text;
+    }
+    std::string text = unknown.size() == 1 ? "unknown option" : "unknown options";
+    for (std::size_t i = 0; i < unknown.size(); ++i) {
+        const auto& [name, argument] = unknown[i];
+        text += (i == 0 ? " " : ", ") + name;
+        if (const std::string near = nearestOption(command, name); !near.empty())
+            text += " (did you mean " + near + "?)";
+        else if (command.get_name() == "run" && i == 0)
+            text += " (a script's own arguments that start with - go after --: netsculpt run "
+                    "SCRIPT -- " +
+                    argument + ")";
+    }
     return text;
 }
 
