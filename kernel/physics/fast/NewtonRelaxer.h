@@ -79,8 +79,10 @@
 // of calls give the same bits.
 //
 // Options: tolerance, maxSeconds, maxSteps (a step = one Newton iteration, i.e. one
-// factorization and solve), threads, cancel, progress, progressInterval, continuation (false:
-// no soft stage), startTensions and wind are honoured; previewStiffnessScale and
+// factorization and solve, or with reuseFactor a few solves with the last run's factor),
+// threads, cancel, progress, progressInterval, continuation (false: no soft stage),
+// startTensions, reuseFactor (ReusedFactor.cpp), singlePrecisionSteps, focusAfterHint,
+// hintBeforeCancel and wind are honoured; previewStiffnessScale and
 // continuationFactor are RK4's and ignored (the soft stage's scale comes from the load, see
 // kSoftLoadFactor).
 
@@ -136,7 +138,8 @@ struct NewtonStatistics {
 /// run's storage (force field, vectors, the Newton matrix and the factor): a run on the same
 /// topology updates the field's law in place and allocates nothing, and one on a new topology
 /// reuses the storage that is large enough. Nothing of an earlier run's state carries over: a
-/// run gives the bits a new relaxer with the same analysis would.
+/// run gives the bits a new relaxer with the same analysis would, unless it is asked to step
+/// with the last run's factor (RelaxOptions::reuseFactor).
 class FastRelaxer final : public Relaxer {
   public:
     FastRelaxer();
