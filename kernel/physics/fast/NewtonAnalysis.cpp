@@ -6,6 +6,7 @@ namespace netsculpt {
 
 void NewtonAnalysis::analyse(const MassSpringSystem& system) {
     factorStiffness = 0;
+    reusedIterations = 0;
     fixed = system.fixed;
     barA = system.barA;
     barB = system.barB;

@@ -32,6 +32,9 @@ struct NewtonAnalysis {
     /// successfully (0: none since the analysis): a later run takes chord steps with that factor
     /// only for a system about as stiff (RelaxOptions::reuseFactor).
     double factorStiffness = 0;
+    /// The conjugate-gradient iterations the last step solved with that factor took (0: none
+    /// yet): the factor ages along a drag, and past kRefreshAfter it is made anew.
+    int reusedIterations = 0;
 
     // A run's storage (NewtonRun's members of the same names). Every run sets what it reads: its
     // law into the field (ForceField::setLaw), its start into the vectors.

@@ -166,6 +166,7 @@ bool NewtonRun::factorize() {
         single_ ? SupernodalCholesky::Precision::Single : SupernodalCholesky::Precision::Double);
     stats_.factorSeconds += secondsSince(t0);
     analysis_.factorStiffness = ok ? meanStiffness() : 0;
+    analysis_.reusedIterations = 0;
     ++stats_.factorizations;
     if (single_)
         ++stats_.singleFactorizations;

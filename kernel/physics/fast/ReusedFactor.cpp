@@ -69,6 +69,7 @@ bool NewtonRun::solveByPreviousFactor(double tolerance) {
             r[i] -= a * q[i];
         }
         if (linearResidualWithin(r, tolerance)) {
+            analysis_.reusedIterations = k + 1;
             for (std::size_t f = 0; f < analysis_.freeKnots.size(); ++f)
                 step_[analysis_.freeKnots[f]] = Vec3{x[3 * f], x[3 * f + 1], x[3 * f + 2]};
             return true;
@@ -106,7 +107,8 @@ bool NewtonRun::linearResidualWithin(const std::vector<double>& r, double tolera
 /// preview's soft law, a hundred times apart).
 bool NewtonRun::previousFactorFits() const {
     const double previous = analysis_.factorStiffness, now = meanStiffness();
-    return previous > 0 && previous < kChordScale * now && now < kChordScale * previous;
+    return previous > 0 && previous < kChordScale * now && now < kChordScale * previous &&
+           analysis_.reusedIterations <= kRefreshAfter;
 }
 
 /// The mean k_s of the bars at the current scale, N/m.
