@@ -415,10 +415,10 @@ void NewtonRun::hintedStart(double tolerance) {
         }
         return factored;
     };
-    previousFactorStep(tolerance);
+    const bool reused = previousFactorStep(tolerance); // a step kept: the net has moved
     const std::int64_t first = steps_;
     while (steps_ - first < kHintIterations && !(residual_ < tolerance) &&
-           !hintStopRequested(steps_ > first, startResidual)) {
+           !hintStopRequested(reused || steps_ > first, startResidual)) {
         report(false);
         assemble(true, false);
         bool factored = factorizeShifted();

@@ -307,7 +307,7 @@ class NewtonRun {
     double takeStep(double alpha, bool mixed);
     void hintedStart(double tolerance);
     // ReusedFactor.cpp (RelaxOptions::reuseFactor)
-    void previousFactorStep(double tolerance);
+    bool previousFactorStep(double tolerance);
     bool solveByPreviousFactor(double tolerance);
     void precondition(const std::vector<double>& in, std::vector<double>& out);
     bool linearResidualWithin(const std::vector<double>& r, double tolerance) const;

@@ -13,25 +13,27 @@ namespace netsculpt::newton {
 
 /// Under the hinted law: one Newton step solved by solveByPreviousFactor, kept when it lowers the
 /// residual (else undone, the hint's tensions back); the hinted iterations go on from there.
-void NewtonRun::previousFactorStep(double tolerance) {
+/// Whether a step was kept.
+bool NewtonRun::previousFactorStep(double tolerance) {
     if (!options_.reuseFactor || residual_ < tolerance || !(residual_ <= kReuseBelow) ||
         !previousFactorFits() || stopRequested())
-        return;
+        return false;
     report(false);
     assemble(true, false);
     if (!solveByPreviousFactor(tolerance))
-        return;
+        return false;
     ++steps_;
     ++stats_.reusedFactorSteps;
     takeStep(1.0, true);
     const double before = residual_;
     residual_ = evaluate(x_);
     if (residual_ < before)
-        return;
+        return true;
     for (std::uint32_t j : analysis_.freeKnots)
         x_[j] = trial_[j]; // the positions before the step (takeStep)
     std::copy(options_.startTensions.begin(), options_.startTensions.end(), tension_.begin());
     residual_ = evaluate(x_);
+    return false;
 }
 
 /// step_ = (H + mu I)^-1 F at the free knots, H as assembled, by conjugate gradients
