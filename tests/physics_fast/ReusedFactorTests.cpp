@@ -13,6 +13,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <atomic>
+
 using namespace netsculpt;
 using netsculpt::test::maxDistance;
 using netsculpt::test::tube;
@@ -105,4 +107,25 @@ TEST_CASE("fast: reuseFactor leaves alone a factor of another stiffness and a st
     MassSpringSystem b = near.start;
     REQUIRE(relaxer.relax(b, hinted(near, 1e-3, true)).converged);
     CHECK(relaxer.statistics().reusedFactorSteps == 0);
+}
+
+TEST_CASE("fast: a cancel that waits for a state worth keeping takes the step with the last "
+          "factor as that state",
+          "[fast]") {
+    // hintBeforeCancel: a cancel ends the hinted start once it has moved the net to a state worth
+    // keeping. A step with the last factor is such a move; no factorized iteration follows it.
+    FastRelaxer relaxer;
+    const Edited edit = lengthened(relaxer, 2e-7, 1e-8);
+    std::atomic<bool> cancel{false};
+    RelaxOptions options = hinted(edit, 1e-12, true); // a tolerance the step does not reach
+    options.hintBeforeCancel = true;
+    options.cancel = &cancel;
+    options.progressInterval = 0;
+    options.progress = [&](const RelaxProgress&) { cancel = true; }; // arrives during the step
+    MassSpringSystem s = edit.start;
+    const RelaxResult r = relaxer.relax(s, options);
+    CHECK(r.stopReason == "cancelled");
+    CHECK(relaxer.statistics().reusedFactorSteps == 1);
+    CHECK(relaxer.statistics().factorizations == 0);
+    CHECK(residual(s) < residual(edit.start));
 }
