@@ -107,8 +107,8 @@ constexpr int kSingleRefinements = 2;
 // factor (NewtonRun::previousFactorStep), when that factor's system had a mean k_s within
 // kChordScale of this one's: conjugate gradients preconditioned with it, at most
 // kMaxReusedIterations (each a solve and a product: a seventh of a factorization at 20,000 knots;
-// along netsculpt-bench-live's drag of the tube most steps take 2 to 6, and a cap of 6 instead of
-// 8 failed more often, each failure paying for its iterations and a factorization: 90th
+// along netsculpt-bench-live's drag of the tube, before kRefreshAfter, most steps took 2 to 6,
+// and a cap of 6 instead of 8 failed more often, each failure paying for its iterations and a factorization: 90th
 // percentile 85-89 ms against 54-80). Only from a start within kReuseBelow knot weights of its
 // equilibrium under the hinted law: further off (a drag's first steps, which have no path to
 // predict them yet, start 0.99 and 790 off) the old factor needs more iterations than a
