@@ -212,16 +212,14 @@ bool NewtonRun::refineSingleStep(double tolerance) {
     r.resize(3 * freeCount);
     for (int k = 0;; ++k) {
         multiplyStep(r);
-        bool within = true;
         for (std::size_t f = 0; f < freeCount; ++f) {
-            const std::uint32_t j = analysis_.freeKnots[f];
-            const Vec3 left = force_[j] - Vec3{r[3 * f], r[3 * f + 1], r[3 * f + 2]};
-            within = within && left.norm() <= kSingleAccuracy * tolerance * weightOf_[j];
+            const Vec3 left =
+                force_[analysis_.freeKnots[f]] - Vec3{r[3 * f], r[3 * f + 1], r[3 * f + 2]};
             rhs_[3 * f] = left.x;
             rhs_[3 * f + 1] = left.y;
             rhs_[3 * f + 2] = left.z;
         }
-        if (within)
+        if (linearResidualWithin(rhs_, tolerance))
             return true;
         if (k == kSingleRefinements)
             return false;
@@ -229,6 +227,18 @@ bool NewtonRun::refineSingleStep(double tolerance) {
         for (std::uint32_t j : analysis_.freeKnots)
             step_[j] += bend_[j];
     }
+}
+
+/// Whether every free knot's linear residual in `r` (3 per free knot) is within kSingleAccuracy
+/// times the tolerance of its weight: a step solved so moves the residual as an exact one would,
+/// to that much.
+bool NewtonRun::linearResidualWithin(const std::vector<double>& r, double tolerance) const {
+    for (std::size_t f = 0; f < analysis_.freeKnots.size(); ++f) {
+        const Vec3 left{r[3 * f], r[3 * f + 1], r[3 * f + 2]};
+        if (!(left.norm() <= kSingleAccuracy * tolerance * weightOf_[analysis_.freeKnots[f]]))
+            return false;
+    }
+    return true;
 }
 
 /// bend_ = the correction c that undoes, to second order, the stretch a full step p causes by

@@ -290,6 +290,7 @@ class NewtonRun {
         }
     }
     bool refineSingleStep(double tolerance);
+    bool linearResidualWithin(const std::vector<double>& r, double tolerance) const;
     void bendStep();
     void bendThirdOrder();
     void solveBarTerms(std::vector<Vec3>& out);
@@ -310,7 +311,6 @@ class NewtonRun {
     bool previousFactorStep(double tolerance);
     bool solveByPreviousFactor(double tolerance);
     void precondition(const std::vector<double>& in, std::vector<double>& out);
-    bool linearResidualWithin(const std::vector<double>& r, double tolerance) const;
     bool previousFactorFits() const;
     double meanStiffness() const;
     void setHintedLaw();

@@ -95,15 +95,6 @@ void NewtonRun::precondition(const std::vector<double>& in, std::vector<double>&
     stats_.solveSeconds += secondsSince(t0);
 }
 
-bool NewtonRun::linearResidualWithin(const std::vector<double>& r, double tolerance) const {
-    for (std::size_t f = 0; f < analysis_.freeKnots.size(); ++f) {
-        const Vec3 left{r[3 * f], r[3 * f + 1], r[3 * f + 2]};
-        if (!(left.norm() <= kSingleAccuracy * tolerance * weightOf_[analysis_.freeKnots[f]]))
-            return false;
-    }
-    return true;
-}
-
 /// Whether the factor a previous run left is of a system whose bars were about as stiff, their
 /// mean k_s within kChordScale of this one's (not the refine's at the material's stiffness for a
 /// preview's soft law, a hundred times apart).
