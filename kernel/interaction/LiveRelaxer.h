@@ -188,10 +188,12 @@ class LiveRelaxer {
     DragPath path_;
     /// When `next` repeats the last step's edit of `previous` (see path_), moves its free knots
     /// on to the path's prediction of the lowest residual (of degree 1, the secant, to
-    /// DragPath::kMaxDegree), if that lowers the residual, and returns true. `restChange` gets
+    /// DragPath::kMaxDegree), if that lowers the residual, and returns that residual (max
+    /// |F|/(m|g|) over free knots at next's law); else nullopt. `restChange` gets
     /// next's rest lengths minus previous's whenever `next` is a rest-length edit of the shape
     /// `previous` ended at (else it is left empty).
-    bool extrapolate(const MassSpringSystem& previous, MassSpringSystem& next, std::vector<double>& restChange);
+    std::optional<double> extrapolate(const MassSpringSystem& previous, MassSpringSystem& next,
+                                      std::vector<double>& restChange);
     /// How a preview starts (worker thread only): `soft`'s positions carried on from a cancelled
     /// preview, new rows continued, a repeated edit extrapolated (LastStep); the hint from the
     /// system before. previous_ moves into `before`.
@@ -199,7 +201,9 @@ class LiveRelaxer {
         std::vector<double> hint;       ///< RelaxOptions::startTensions; empty = none
         std::vector<Vec3> positions;    ///< soft's before the extrapolation: a step's origin
         std::vector<double> restChange; ///< extrapolate()'s
-        bool showAtOnce = false;        ///< carried or continued: published before iterating
+        /// carried, continued or predicted near its equilibrium: published before iterating
+        bool showAtOnce = false;
+        double residual = 0; ///< a predicted start's (extrapolate()'s); 0 = not computed
         std::optional<MassSpringSystem> before;
     };
     PreviewStart preparePreviewStart(MassSpringSystem& soft);

@@ -428,6 +428,44 @@ TEST_CASE("live relaxer: new rows are shown where the rows above lead before the
     CHECK(published.back().steps > 0);
 }
 
+TEST_CASE("live relaxer: a drag step predicted near its equilibrium is shown before its first "
+          "iteration",
+          "[live]") {
+    Scene scene;
+    scene.doc.execute(SetRowsCommand{scene.net, 20});
+    PublishedStates log;
+    LiveRelaxer live(log.options());
+    REQUIRE(previewAndShow(scene.doc, live, 1)->converged);
+    double bar = 0.35;
+    for (std::uint64_t generation = 2; generation <= 6; ++generation) {
+        const std::vector<Vec3> before = scene.doc.compiled().system.position;
+        bar *= 1.005;
+        scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt, bar}, true);
+        const auto settled = previewAndShow(scene.doc, live, generation);
+        REQUIRE(settled->converged);
+        std::lock_guard lock(log.mutex);
+        const auto first = log.firstOf(generation);
+        REQUIRE(first != log.states.end());
+        INFO("step " << generation - 1 << ": first shape after " << first->steps
+                     << " iterations, residual " << first->residual);
+        if (generation == 2) { // a drag's first step: no path yet, nothing predicted
+            CHECK(first->steps > 0);
+            continue;
+        }
+        CHECK(first->running);
+        CHECK(first->steps == 0);
+        // The residual it reports is that of the shape shown, under the preview's law.
+        MassSpringSystem soft = scene.doc.compiled().system;
+        scaleStiffness(soft, first->stiffnessScale);
+        soft.position = first->positions;
+        CHECK(first->residual == Approx(residual(soft)).epsilon(1e-9));
+        CHECK(first->residual <= 1.0);
+        // Far nearer the settled shape than the shape before the edit was.
+        const double moved = maxDistance(before, settled->positions);
+        CHECK(maxDistance(first->positions, settled->positions) < 0.05 * moved);
+    }
+}
+
 TEST_CASE("live relaxer: a preview superseded by the next edit hands on the shape it reached, "
           "which the next one shows at once and goes on from", "[live]") {
     Document doc;
