@@ -6,7 +6,7 @@
 namespace netsculpt {
 
 std::optional<double> repeatRatio(const std::vector<double>& now, const std::vector<double>& last,
-                                  double tolerance) {
+                                  double tolerance, double most) {
     if (now.size() != last.size())
         return std::nullopt;
     double dot = 0, lastSquared = 0, nowSquared = 0;
@@ -23,7 +23,7 @@ std::optional<double> repeatRatio(const std::vector<double>& now, const std::vec
         const double off = now[b] - rho * last[b];
         offSquared += off * off;
     }
-    if (!(rho > 0 && rho <= 2) || offSquared > tolerance * tolerance * nowSquared)
+    if (!(rho > 0 && rho <= most) || offSquared > tolerance * tolerance * nowSquared)
         return std::nullopt;
     return rho;
 }
@@ -32,25 +32,49 @@ void DragPath::clear() {
     shapes_.clear();
     t_.clear();
     lastChange_.clear();
+    skipped_.clear();
+}
+
+std::vector<double> DragPath::sinceLastShape(const std::vector<double>& restChange) const {
+    std::vector<double> change = restChange;
+    if (skipped_.size() == change.size())
+        for (std::size_t b = 0; b < change.size(); ++b)
+            change[b] += skipped_[b];
+    return change;
 }
 
 std::optional<double> DragPath::ratio(const std::vector<double>& restChange,
                                       double tolerance) const {
     if (shapes_.empty())
         return std::nullopt;
-    return repeatRatio(restChange, lastChange_, tolerance);
+    if (skipped_.empty())
+        return repeatRatio(restChange, lastChange_, tolerance);
+    if (!repeatRatio(restChange, lastChange_, tolerance)) // this step alone: not the same edit
+        return std::nullopt;
+    return repeatRatio(sinceLastShape(restChange), lastChange_, tolerance, kMaxAhead);
+}
+
+void DragPath::skip(const std::vector<double>& restChange, double tolerance) {
+    if (!ratio(restChange, tolerance)) {
+        clear();
+        return;
+    }
+    skipped_ = sinceLastShape(restChange);
 }
 
 void DragPath::add(const std::vector<Vec3>& start, const std::vector<Vec3>& end,
                    std::vector<double> restChange, double tolerance) {
     const std::optional<double> rho = ratio(restChange, tolerance);
-    if (!rho || shapes_.back() != start) {
+    // After skipped steps the step goes on from where their runs stopped, not the last shape.
+    if (!rho || (skipped_.empty() && shapes_.back() != start)) {
         clear();
         shapes_.push_back(start);
         t_.push_back(0);
         t_.push_back(1); // the first step is the unit of t
     } else {
         t_.push_back(t_.back() + *rho * (t_.back() - t_[t_.size() - 2]));
+        restChange = sinceLastShape(restChange);
+        skipped_.clear();
     }
     shapes_.push_back(end);
     lastChange_ = std::move(restChange);

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #ifdef __linux__
@@ -33,12 +34,27 @@ constexpr double kRepeatTolerance = 1e-3;
 // iterations that way, 47 from the preview's shape) goes on from the preview's shape instead.
 constexpr std::int64_t kRefinedStartSteps = 12;
 
-// A drag's next step predicted this near its equilibrium (knot weights, at the preview's law) is
-// shown at once, before the step's Newton iteration corrects it. Along the tube's drag of
-// netsculpt-bench-live, the secant's starts (0.6-1 knot weights off) have every knot within
-// 0.11 mm of its settled place and the cubic's (0.002-0.01) within 0.013 mm: a 42 mm step is on
-// screen the frame after the edit. A start further off (a slack net's folds turning) is not shown.
-constexpr double kShowPredictionBelow = 1.0;
+// A drag's shape this near its equilibrium (knot weights, at the preview's law) is near enough
+// to show and to go on from. A step's prediction so near is shown at once, before the step's
+// Newton iteration corrects it: along the tube's drag of netsculpt-bench-live the secant's starts
+// (0.6-1 knot weights off) have every knot within 0.11 mm of its settled place and the cubic's
+// (0.002-0.01) within 0.013 mm, so a 42 mm step is on screen the frame after the edit. A step cut
+// short by the next edit after an iteration that brought it so near goes on the drag's path: a
+// drag as fast as the frames cuts most of them short. A start further off (a slack net's folds
+// turning) is neither shown nor kept.
+constexpr double kNearEquilibrium = 1.0;
+
+/// FNV-1a over the positions' bits: the same shape, the same hash.
+std::uint64_t shapeHash(const std::vector<Vec3>& positions) {
+    std::uint64_t hash = 1469598103934665603ull;
+    for (const Vec3& p : positions)
+        for (double v : {p.x, p.y, p.z}) {
+            std::uint64_t bits = 0;
+            std::memcpy(&bits, &v, sizeof bits);
+            hash = (hash ^ bits) * 1099511628211ull;
+        }
+    return hash;
+}
 
 } // namespace
 
@@ -182,6 +198,12 @@ LiveRelaxer::PreviewStart LiveRelaxer::preparePreviewStart(MassSpringSystem& sof
                                     ? carryMatchedPositions(*previous_, soft)
                                     : 0;
     previewCancelled_ = false;
+    // A shape the last preview showed on its way, taken by the document before the run ended:
+    // the edit goes on from where it ended.
+    if (previous_ && carried == 0 && previous_->knotCount() == soft.knotCount() &&
+        previous_->origin == soft.origin &&
+        std::count(shownOnTheWay_.begin(), shownOnTheWay_.end(), shapeHash(soft.position)) > 0)
+        soft.position = previous_->position;
     // Rows added below go on with the shape above them, and the tensions the start shape had
     // before the edit make the fast path's predictor. The same edit once more (a drag's next
     // step) goes on as far as the last step went; its hint is then the new law's tensions there.
@@ -191,7 +213,7 @@ LiveRelaxer::PreviewStart LiveRelaxer::preparePreviewStart(MassSpringSystem& sof
         previous_ ? extrapolate(*previous_, soft, start.restChange) : std::nullopt;
     const bool repeated = predicted.has_value();
     start.residual = predicted.value_or(0.0);
-    start.showAtOnce = carried + continued > 0 || (repeated && *predicted <= kShowPredictionBelow);
+    start.showAtOnce = carried + continued > 0 || (repeated && *predicted <= kNearEquilibrium);
     if (previous_)
         start.hint = startTensions(repeated ? soft : *previous_, soft);
     start.before = std::move(previous_);
@@ -330,6 +352,7 @@ void LiveRelaxer::runJob(Job& job) {
         previous_.reset();
         previewCancelled_ = false;
         refined_.reset();
+        shownOnTheWay_.clear();
         run.state.error = e.what();
         finish(run, "error", job.system.position);
     }
@@ -344,6 +367,7 @@ void LiveRelaxer::runPreview(JobRun& run) {
     MassSpringSystem soft = run.job.system;
     scaleStiffness(soft, scale);
     PreviewStart start = preparePreviewStart(soft);
+    shownOnTheWay_.clear();
     RelaxOptions o = jobOptions();
     o.startTensions = start.hint;
     o.tolerance = options_.previewTolerance;
@@ -363,7 +387,7 @@ void LiveRelaxer::runPreview(JobRun& run) {
         shown.residual = start.residual;
         shown.seconds = lastShown = run.seconds();
         shown.positions = soft.position;
-        publish(std::move(shown));
+        publishOnTheWay(std::move(shown));
     }
     setShapePublisher(run, o, soft.knotCount(), scale, lastShown);
     const RelaxResult r = relaxer_->relax(soft, o);
@@ -374,7 +398,13 @@ void LiveRelaxer::runPreview(JobRun& run) {
         if (!hasPending()) finish(run, "cancelled", soft.position); // else a newer run follows
         previewCancelled_ = hasPending();
         unmoved = soft.position == start.positions;
-        path_.clear();
+        // A step cut short goes on the drag's path when an iteration brought it near its
+        // equilibrium, else the next step takes on its edit; one that did not move leaves its
+        // edit to the next's change, which is measured from the system before it.
+        if (!unmoved && r.steps > 0 && r.residual <= kNearEquilibrium)
+            rememberStep(true, start, soft);
+        else if (!unmoved)
+            path_.skip(start.restChange, kRepeatTolerance);
     } else {
         run.state.converged = r.converged;
         finish(run, r.stopReason, soft.position);
@@ -408,14 +438,20 @@ void LiveRelaxer::setShapePublisher(JobRun& run, RelaxOptions& o, std::size_t kn
         shown.steps = p.steps;
         shown.seconds = run.seconds();
         shown.positions.assign(p.positions.begin(), p.positions.end());
-        publish(std::move(shown));
+        publishOnTheWay(std::move(shown));
     };
 }
 
-// A converged preview after a rest-length edit is a step of the path the next one may go on
-// along (DragPath.h).
-void LiveRelaxer::rememberStep(bool converged, PreviewStart& start, const MassSpringSystem& soft) {
-    if (!converged || start.restChange.empty()) {
+void LiveRelaxer::publishOnTheWay(LiveState shown) {
+    shownOnTheWay_.push_back(shapeHash(shown.positions));
+    publish(std::move(shown));
+}
+
+// A preview that ended near its equilibrium after a rest-length edit is a step of the path the
+// next one may go on along (DragPath.h).
+void LiveRelaxer::rememberStep(bool nearEquilibrium, PreviewStart& start,
+                               const MassSpringSystem& soft) {
+    if (!nearEquilibrium || start.restChange.empty()) {
         path_.clear();
         return;
     }
@@ -426,6 +462,7 @@ void LiveRelaxer::rememberStep(bool converged, PreviewStart& start, const MassSp
 // in pieces can lead a slack net to another equilibrium); its progress reports are published
 // without positions (the shape shown stays until the end).
 void LiveRelaxer::runRefine(JobRun& run) {
+    shownOnTheWay_.clear(); // the document takes the refine's shape, or the preview's end
     RelaxOptions o = jobOptions();
     o.tolerance = options_.refineTolerance;
     o.continuation = true;

@@ -211,8 +211,9 @@ class LiveRelaxer {
     /// `scale`) as often as the publish interval asks; `lastShown`: when one was last shown.
     void setShapePublisher(JobRun& run, RelaxOptions& o, std::size_t knots, double scale,
                            double lastShown);
-    /// After a preview: its step added to path_ when it converged after a rest-length edit.
-    void rememberStep(bool converged, PreviewStart& start, const MassSpringSystem& soft);
+    /// After a preview: its step added to path_ when it ended `nearEquilibrium` (converged, or
+    /// cut short near it) after a rest-length edit; else the path ends.
+    void rememberStep(bool nearEquilibrium, PreviewStart& start, const MassSpringSystem& soft);
     /// Worker thread only: extrapolate()'s residual test, kept for the topology of its last use
     /// (a drag's steps share it; only the law is updated): the force field, the bars and fixed
     /// flags it was built for, and scratch.
@@ -223,6 +224,12 @@ class LiveRelaxer {
         std::vector<Vec3> predicted, best, force;
     };
     std::optional<ResidualCheck> residualCheck_;
+    /// Worker thread only: a hash of each shape the last preview published before its end. The
+    /// document may take one of them (a frame before the run ended) and edit it: the next
+    /// preview then goes on from where the run ended, which a drag's path holds.
+    std::vector<std::uint64_t> shownOnTheWay_;
+    /// Publishes a preview's shape before its end, its hash kept in shownOnTheWay_.
+    void publishOnTheWay(LiveState shown);
     /// The residual check with `system`'s topology and law (UserError as ForceField's).
     ResidualCheck& residualCheckFor(const MassSpringSystem& system);
     std::thread worker_; // last: starts after everything it uses exists

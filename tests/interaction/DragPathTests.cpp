@@ -91,3 +91,40 @@ TEST_CASE("drag path: the polynomial of each degree through uneven steps, and a 
     CHECK(none.degrees() == 0);
     CHECK_FALSE(none.ratio(change(0.01), kTolerance));
 }
+
+TEST_CASE("drag path: a step cut short is carried into the next one, which goes on from the last "
+          "shape") {
+    // Steps of 0.1, 0.15, 0.12 along the cubic, then one of 0.1 cut short (its run stopped
+    // somewhere off the path) and one of 0.08: together 1.5 times the last step.
+    DragPath path = walk(cubic, {0.1, 0.15, 0.12});
+    path.skip(change(0.1), kTolerance);
+    const std::optional<double> rho = path.ratio(change(0.08), kTolerance);
+    REQUIRE(rho);
+    CHECK(*rho == Approx(1.5).epsilon(1e-12));
+    const std::vector<std::uint8_t> fixed = {1, 0};
+    std::vector<Vec3> predicted;
+    path.predict(*rho, 3, fixed, predicted);
+    CHECK(predicted[1].x == Approx(cubic(0.55)).epsilon(1e-13));
+
+    // The step settles where it was predicted, from wherever the cut-short run stopped: the
+    // path goes on through it, still exact for the cubic.
+    path.add(shapeAt(cubic, 0.4), shapeAt(cubic, 0.55), change(0.08), kTolerance);
+    REQUIRE(path.degrees() == 3);
+    const std::optional<double> next = path.ratio(change(0.09), kTolerance);
+    REQUIRE(next);
+    CHECK(*next == Approx(0.5).epsilon(1e-12)); // of the last step, 0.18 with the skipped one
+    path.predict(*next, 3, fixed, predicted);
+    CHECK(predicted[1].x == Approx(cubic(0.64)).epsilon(1e-13));
+
+    // Another edit cut short ends the path; so do skipped steps beyond kMaxAhead of the last.
+    DragPath other = walk(cubic, {0.1, 0.15, 0.12});
+    other.skip({0.03, 0.03, 0.03}, kTolerance);
+    CHECK(other.degrees() == 0);
+    DragPath far = walk(cubic, {0.1, 0.15, 0.12});
+    for (int i = 0; i < 4; ++i)
+        far.skip(change(0.12), kTolerance);
+    CHECK(far.degrees() == 3);
+    CHECK_FALSE(far.ratio(change(0.12), kTolerance)); // five times the last step
+    far.skip(change(0.12), kTolerance);
+    CHECK(far.degrees() == 0);
+}

@@ -14,6 +14,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <mutex>
 #include <sstream>
 
@@ -464,6 +465,103 @@ TEST_CASE("live relaxer: a drag step predicted near its equilibrium is shown bef
         const double moved = maxDistance(before, settled->positions);
         CHECK(maxDistance(first->positions, settled->positions) < 0.05 * moved);
     }
+}
+
+TEST_CASE("live relaxer: a drag goes on along its path from a shape the document took before "
+          "the step's end",
+          "[live]") {
+    // The studio's frame may take the step's predicted shape, shown at once, before the step's
+    // iteration ends; the next edit is then made to that shape.
+    Scene scene;
+    scene.doc.execute(SetRowsCommand{scene.net, 20});
+    PublishedStates log;
+    LiveRelaxer live(log.options());
+    REQUIRE(previewAndShow(scene.doc, live, 1)->converged);
+    double bar = 0.35;
+    for (std::uint64_t generation = 2; generation <= 3; ++generation) {
+        bar *= 1.005;
+        scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt, bar}, true);
+        REQUIRE(previewAndShow(scene.doc, live, generation)->converged);
+    }
+    bar *= 1.005;
+    scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt, bar}, true);
+    live.preview(scene.doc.compiled().system, 4);
+    REQUIRE(live.waitIdle(60));
+    {
+        std::lock_guard lock(log.mutex);
+        const auto predicted = log.firstOf(4);
+        REQUIRE(predicted != log.states.end());
+        REQUIRE(predicted->steps == 0);
+        REQUIRE(live.latest()->positions != predicted->positions);
+        scene.doc.adoptPositions(predicted->positions, false);
+    }
+    bar *= 1.005;
+    scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt, bar}, true);
+    const auto settled = previewAndShow(scene.doc, live, 5);
+    checkAtColdEquilibrium(scene.doc, *settled);
+    std::lock_guard lock(log.mutex);
+    const auto first = log.firstOf(5);
+    REQUIRE(first != log.states.end());
+    INFO("first shape of the next step after " << first->steps << " iterations, residual "
+                                               << first->residual);
+    CHECK(first->steps == 0); // predicted, and shown at once
+    CHECK(first->residual > 0);
+    CHECK(first->residual <= 1.0);
+}
+
+TEST_CASE("live relaxer: a drag step cut short near its equilibrium stays on the drag's path",
+          "[live]") {
+    // The worker is held at step 4's first shape until step 5's edit has come: step 4 then
+    // ends after its first iteration, cancelled, and step 5 goes on along the path through it.
+    Scene scene;
+    scene.doc.execute(SetRowsCommand{scene.net, 20});
+    PublishedStates log;
+    std::promise<void> started, released;
+    std::shared_future<void> release = released.get_future().share();
+    LiveRelaxOptions options = log.options();
+    options.onPublish = [&, record = options.onPublish,
+                         held = false](const LiveState& state) mutable {
+        record(state);
+        if (state.generation == 4 && !held) {
+            held = true;
+            started.set_value();
+            release.wait();
+        }
+    };
+    LiveRelaxer live(options);
+    REQUIRE(previewAndShow(scene.doc, live, 1)->converged);
+    double bar = 0.35;
+    for (std::uint64_t generation = 2; generation <= 3; ++generation) {
+        bar *= 1.005;
+        scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt, bar}, true);
+        REQUIRE(previewAndShow(scene.doc, live, generation)->converged);
+    }
+    bar *= 1.005;
+    scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt, bar}, true);
+    live.preview(scene.doc.compiled().system, 4);
+    REQUIRE(started.get_future().wait_for(std::chrono::seconds(60)) == std::future_status::ready);
+    bar *= 1.005;
+    scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt, bar}, true);
+    live.preview(scene.doc.compiled().system, 5);
+    released.set_value();
+    REQUIRE(live.waitIdle(60));
+    const auto settled = live.latest();
+    REQUIRE(settled->generation == 5);
+    scene.doc.adoptPositions(settled->positions, false);
+    checkAtColdEquilibrium(scene.doc, *settled);
+    std::lock_guard lock(log.mutex);
+    const auto stopped = std::find_if(log.states.begin(), log.states.end(), [](const LiveState& s) {
+        return s.generation == 4 && !s.running;
+    });
+    // Step 4 ended cancelled, unpublished (step 5 followed), or published as cancelled.
+    CHECK((stopped == log.states.end() || stopped->stopReason == "cancelled"));
+    const auto first = log.firstOf(5);
+    REQUIRE(first != log.states.end());
+    INFO("step 5's first shape after " << first->steps << " iterations, residual "
+                                       << first->residual);
+    CHECK(first->steps == 0);   // predicted from the path, and shown at once
+    CHECK(first->residual > 0); // (a shape carried from step 4 alone would show 0)
+    CHECK(first->residual <= 1.0);
 }
 
 TEST_CASE("live relaxer: a preview superseded by the next edit hands on the shape it reached, "
