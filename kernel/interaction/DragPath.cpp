@@ -68,11 +68,15 @@ void DragPath::add(const std::vector<Vec3>& start, const std::vector<Vec3>& end,
     // After skipped steps the step goes on from where their runs stopped, not the last shape.
     if (!rho || (skipped_.empty() && shapes_.back() != start)) {
         clear();
-        shapes_.push_back(start);
-        t_.push_back(0);
+        if (!start.empty()) {
+            shapes_.push_back(start);
+            t_.push_back(0);
+        }
         t_.push_back(1); // the first step is the unit of t
+        lastStep_ = 1;
     } else {
-        t_.push_back(t_.back() + *rho * (t_.back() - t_[t_.size() - 2]));
+        lastStep_ *= *rho;
+        t_.push_back(t_.back() + lastStep_);
         restChange = sinceLastShape(restChange);
         skipped_.clear();
     }
@@ -88,7 +92,7 @@ void DragPath::predict(double ratio, int degree, const std::vector<std::uint8_t>
                        std::vector<Vec3>& out) const {
     assert(degree >= 1 && degree <= degrees());
     const std::size_t m = shapes_.size() - 1, first = m - std::size_t(degree);
-    const double next = t_[m] + ratio * (t_[m] - t_[m - 1]);
+    const double next = t_[m] + ratio * lastStep_;
     const std::vector<Vec3>& last = shapes_[m];
     out.assign(last.begin(), last.end());
     Vec3 table[kMaxDegree + 1];

@@ -32,9 +32,10 @@ class DragPath {
     static constexpr double kMaxAhead = 4;
 
     /// A converged step of a drag: from `start` (the path's last shape, or the first shape of a
-    /// new path) by the rest-length change `restChange` to `end`. A step that does not repeat
-    /// the last one (repeatRatio with `tolerance`), or does not start where the path ends,
-    /// starts a new path.
+    /// new path; empty when the step did not start at an equilibrium, a new path then starting
+    /// at `end` alone) by the rest-length change `restChange` to `end`. A step that does not
+    /// repeat the last one (repeatRatio with `tolerance`), or does not start where the path
+    /// ends, starts a new path.
     void add(const std::vector<Vec3>& start, const std::vector<Vec3>& end,
              std::vector<double> restChange, double tolerance);
     /// A step whose preview was cut short before it settled (the next edit came first): its
@@ -58,6 +59,7 @@ class DragPath {
   private:
     std::vector<std::vector<Vec3>> shapes_; ///< x_0 ... x_m, oldest first
     std::vector<double> t_;                 ///< the edit's size at each, in the first step's units
+    double lastStep_ = 1;                   ///< t_'s last increment (1 for the first step)
     std::vector<double> lastChange_;        ///< the last step's rest-length change
     std::vector<double> skipped_;           ///< the skipped steps' change since then; empty: none
 

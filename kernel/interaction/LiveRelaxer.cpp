@@ -209,6 +209,7 @@ LiveRelaxer::PreviewStart LiveRelaxer::preparePreviewStart(MassSpringSystem& sof
     // step) goes on as far as the last step went; its hint is then the new law's tensions there.
     const std::size_t continued = previous_ ? continueNewRows(*previous_, soft) : 0;
     start.positions = soft.position; // the step is measured from here
+    start.settled = previous_ && previousSettled_ && previous_->position == soft.position;
     const std::optional<double> predicted =
         previous_ ? extrapolate(*previous_, soft, start.restChange) : std::nullopt;
     const bool repeated = predicted.has_value();
@@ -350,6 +351,7 @@ void LiveRelaxer::runJob(Job& job) {
             runRefine(run);
     } catch (const UserError& e) {
         previous_.reset();
+        previousSettled_ = false;
         previewCancelled_ = false;
         refined_.reset();
         shownOnTheWay_.clear();
@@ -401,14 +403,18 @@ void LiveRelaxer::runPreview(JobRun& run) {
         // A step cut short goes on the drag's path when an iteration brought it near its
         // equilibrium, else the next step takes on its edit; one that did not move leaves its
         // edit to the next's change, which is measured from the system before it.
-        if (!unmoved && r.steps > 0 && r.residual <= kNearEquilibrium)
+        const bool near = r.converged || (r.steps > 0 && r.residual <= kNearEquilibrium);
+        if (!unmoved && near)
             rememberStep(true, start, soft);
         else if (!unmoved)
             path_.skip(start.restChange, kRepeatTolerance);
+        if (!unmoved)
+            previousSettled_ = near;
     } else {
         run.state.converged = r.converged;
         finish(run, r.stopReason, soft.position);
         rememberStep(r.converged, start, soft);
+        previousSettled_ = r.converged;
     }
     // The next run's hint is the tensions its start had under the law it was relaxed for: a run
     // that did not move its start leaves that law to the one before it.
@@ -455,7 +461,8 @@ void LiveRelaxer::rememberStep(bool nearEquilibrium, PreviewStart& start,
         path_.clear();
         return;
     }
-    path_.add(start.positions, soft.position, std::move(start.restChange), kRepeatTolerance);
+    path_.add(start.settled ? start.positions : std::vector<Vec3>{}, soft.position,
+              std::move(start.restChange), kRepeatTolerance);
 }
 
 // The material's stiffness in one run, so the backend keeps its own continuation (restarting it
@@ -480,7 +487,9 @@ void LiveRelaxer::runRefine(JobRun& run) {
     // relaxed under, not the material's, and a drag's next step is still predicted.
     std::optional<MassSpringSystem> beforeRefine = std::move(previous_);
     DragPath pathBeforeRefine = std::move(path_);
+    const bool settledBeforeRefine = previousSettled_;
     previous_.reset();
+    previousSettled_ = false;
     previewCancelled_ = false;
     path_.clear();
     MassSpringSystem& system = run.job.system;
@@ -499,6 +508,7 @@ void LiveRelaxer::runRefine(JobRun& run) {
     if (cancelled && hasPending() && beforeRefine) {
         previous_ = std::move(beforeRefine);
         path_ = std::move(pathBeforeRefine);
+        previousSettled_ = settledBeforeRefine;
     } else {
         previous_ = std::move(system);
     }

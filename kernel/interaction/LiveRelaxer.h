@@ -167,6 +167,10 @@ class LiveRelaxer {
     /// by a newer one: a preview that did not move its start leaves the system before it, and a
     /// refine the preview's before it (the shape the document still shows).
     std::optional<MassSpringSystem> previous_;
+    /// Worker thread only: previous_'s positions are where a preview ended near its equilibrium
+    /// under previous_'s law (converged, or cut short after an iteration that came near): a drag's
+    /// path may start there.
+    bool previousSettled_ = false;
     /// Worker thread only: the last run was a preview superseded by a newer one before its end
     /// was published; previous_ holds where it stopped, which the next preview goes on from.
     bool previewCancelled_ = false;
@@ -204,6 +208,8 @@ class LiveRelaxer {
         /// carried, continued or predicted near its equilibrium: published before iterating
         bool showAtOnce = false;
         double residual = 0; ///< a predicted start's (extrapolate()'s); 0 = not computed
+        /// `positions` are where the run before ended near its equilibrium (previousSettled_)
+        bool settled = false;
         std::optional<MassSpringSystem> before;
     };
     PreviewStart preparePreviewStart(MassSpringSystem& soft);

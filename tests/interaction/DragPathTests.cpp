@@ -116,6 +116,18 @@ TEST_CASE("drag path: a step cut short is carried into the next one, which goes 
     path.predict(*next, 3, fixed, predicted);
     CHECK(predicted[1].x == Approx(cubic(0.64)).epsilon(1e-13));
 
+    // A step from a shape that is no equilibrium (a run cut short far from it) starts a new path
+    // at the step's end alone: the next step has nothing to predict from, the one after a secant.
+    DragPath fresh = walk(cubic, {0.1, 0.15});
+    fresh.add({}, shapeAt(cubic, 0.4), {0.03, 0.03, 0.03}, kTolerance);
+    CHECK(fresh.degrees() == 0);
+    fresh.add(shapeAt(cubic, 0.4), shapeAt(cubic, 0.43), {0.03, 0.03, 0.03}, kTolerance);
+    CHECK(fresh.degrees() == 1);
+    const std::optional<double> same = fresh.ratio({0.03, 0.03, 0.03}, kTolerance);
+    REQUIRE(same);
+    fresh.predict(*same, 1, fixed, predicted);
+    CHECK(predicted[1].x == Approx(2 * cubic(0.43) - cubic(0.4)).epsilon(1e-13));
+
     // Another edit cut short ends the path; so do skipped steps beyond kMaxAhead of the last.
     DragPath other = walk(cubic, {0.1, 0.15, 0.12});
     other.skip({0.03, 0.03, 0.03}, kTolerance);
