@@ -198,6 +198,12 @@ class LiveRelaxer {
     /// `previous` ended at (else it is left empty).
     std::optional<double> extrapolate(const MassSpringSystem& previous, MassSpringSystem& next,
                                       std::vector<double>& restChange);
+    /// After extrapolate(): its prediction of the lowest residual when the one of the degree next
+    /// to it agrees with it, both moving the knots from `from` alike (to within kAgreement of the
+    /// motion), else null (as when it made none).
+    /// `residual` gets its residual.
+    const std::vector<Vec3>* agreedPrediction(const std::vector<Vec3>& from,
+                                              double& residual) const;
     /// How a preview starts (worker thread only): `soft`'s positions carried on from a cancelled
     /// preview, new rows continued, a repeated edit extrapolated (LastStep); the hint from the
     /// system before. previous_ moves into `before`.
@@ -207,7 +213,9 @@ class LiveRelaxer {
         std::vector<double> restChange; ///< extrapolate()'s
         /// carried, continued or predicted near its equilibrium: published before iterating
         bool showAtOnce = false;
-        double residual = 0; ///< a predicted start's (extrapolate()'s); 0 = not computed
+        /// a prediction shown at once that is not the start (agreedPrediction); empty = none
+        std::vector<Vec3> shown;
+        double residual = 0; ///< of the predicted start, or of `shown`; 0 = not computed
         /// `positions` are where the run before ended near its equilibrium (previousSettled_)
         bool settled = false;
         std::optional<MassSpringSystem> before;
@@ -227,7 +235,11 @@ class LiveRelaxer {
         ForceField field;
         std::vector<std::uint32_t> barA, barB;
         std::vector<std::uint8_t> fixed;
-        std::vector<Vec3> predicted, best, force;
+        std::vector<Vec3> force;
+        /// extrapolate()'s predictions for the step, of degree 1, 2, ..., one per residual (no
+        /// residual: none made; the storage is kept from step to step)
+        std::vector<std::vector<Vec3>> predictions;
+        std::vector<double> residuals;
     };
     std::optional<ResidualCheck> residualCheck_;
     /// Worker thread only: a hash of each shape the last preview published before its end. The
