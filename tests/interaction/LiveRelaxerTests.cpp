@@ -395,6 +395,38 @@ struct PublishedStates {
     }
 };
 
+/// The test scene's net at 20 rows, its bars dragged longer by +0.5 % steps.
+struct BarDrag {
+    Scene scene;
+    double bar = 0.35;
+    BarDrag() { scene.doc.execute(SetRowsCommand{scene.net, 20}); }
+    /// The drag's next step, executed (not previewed).
+    void step() {
+        bar *= 1.005;
+        scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt, bar}, true);
+    }
+    /// Settles the net (generation 1), then takes `steps` steps, each previewed and shown.
+    void settleAndStep(LiveRelaxer& live, int steps) {
+        REQUIRE(previewAndShow(scene.doc, live, 1)->converged);
+        for (int k = 1; k <= steps; ++k) {
+            step();
+            REQUIRE(previewAndShow(scene.doc, live, std::uint64_t(k) + 1)->converged);
+        }
+    }
+};
+
+/// `shown` was published before any iteration, and its residual is the one its positions have
+/// under the preview's law of `doc`'s system (an independent evaluation).
+void checkShownAtOnce(const Document& doc, const LiveState& shown) {
+    CHECK(shown.running);
+    CHECK(shown.steps == 0);
+    MassSpringSystem soft = doc.compiled().system;
+    scaleStiffness(soft, shown.stiffnessScale);
+    soft.position = shown.positions;
+    CHECK(shown.residual > 0);
+    CHECK(shown.residual == Approx(residual(soft)).epsilon(1e-9));
+}
+
 } // namespace
 
 TEST_CASE("live relaxer: new rows are shown where the rows above lead before the first iteration", "[live]") {
@@ -432,17 +464,14 @@ TEST_CASE("live relaxer: new rows are shown where the rows above lead before the
 TEST_CASE("live relaxer: a drag step predicted near its equilibrium is shown before its first "
           "iteration",
           "[live]") {
-    Scene scene;
-    scene.doc.execute(SetRowsCommand{scene.net, 20});
+    BarDrag drag;
     PublishedStates log;
     LiveRelaxer live(log.options());
-    REQUIRE(previewAndShow(scene.doc, live, 1)->converged);
-    double bar = 0.35;
+    drag.settleAndStep(live, 0);
     for (std::uint64_t generation = 2; generation <= 6; ++generation) {
-        const std::vector<Vec3> before = scene.doc.compiled().system.position;
-        bar *= 1.005;
-        scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt, bar}, true);
-        const auto settled = previewAndShow(scene.doc, live, generation);
+        const std::vector<Vec3> before = drag.scene.doc.compiled().system.position;
+        drag.step();
+        const auto settled = previewAndShow(drag.scene.doc, live, generation);
         REQUIRE(settled->converged);
         std::lock_guard lock(log.mutex);
         const auto first = log.firstOf(generation);
@@ -453,13 +482,7 @@ TEST_CASE("live relaxer: a drag step predicted near its equilibrium is shown bef
             CHECK(first->steps > 0);
             continue;
         }
-        CHECK(first->running);
-        CHECK(first->steps == 0);
-        // The residual it reports is that of the shape shown, under the preview's law.
-        MassSpringSystem soft = scene.doc.compiled().system;
-        scaleStiffness(soft, first->stiffnessScale);
-        soft.position = first->positions;
-        CHECK(first->residual == Approx(residual(soft)).epsilon(1e-9));
+        checkShownAtOnce(drag.scene.doc, *first);
         CHECK(first->residual <= 1.0);
         // Far nearer the settled shape than the shape before the edit was.
         const double moved = maxDistance(before, settled->positions);
@@ -494,10 +517,7 @@ TEST_CASE("live relaxer: a slack sheet's drag step is shown at once where the pa
             continue; // shown after an iteration, or a prediction taken as the start
         ++shownFar;
         INFO("step " << generation - 1 << ": shown at once, residual " << first->residual);
-        MassSpringSystem soft = doc.compiled().system;
-        scaleStiffness(soft, first->stiffnessScale);
-        soft.position = first->positions;
-        CHECK(first->residual == Approx(residual(soft)).epsilon(1e-9));
+        checkShownAtOnce(doc, *first);
         const double moved = maxDistance(before, settled->positions);
         CHECK(maxDistance(first->positions, settled->positions) < 0.5 * moved);
     }
@@ -509,20 +529,13 @@ TEST_CASE("live relaxer: a drag goes on along its path from a shape the document
           "[live]") {
     // The studio's frame may take the step's predicted shape, shown at once, before the step's
     // iteration ends; the next edit is then made to that shape.
-    Scene scene;
-    scene.doc.execute(SetRowsCommand{scene.net, 20});
+    BarDrag drag;
+    Document& doc = drag.scene.doc;
     PublishedStates log;
     LiveRelaxer live(log.options());
-    REQUIRE(previewAndShow(scene.doc, live, 1)->converged);
-    double bar = 0.35;
-    for (std::uint64_t generation = 2; generation <= 3; ++generation) {
-        bar *= 1.005;
-        scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt, bar}, true);
-        REQUIRE(previewAndShow(scene.doc, live, generation)->converged);
-    }
-    bar *= 1.005;
-    scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt, bar}, true);
-    live.preview(scene.doc.compiled().system, 4);
+    drag.settleAndStep(live, 2);
+    drag.step();
+    live.preview(doc.compiled().system, 4);
     REQUIRE(live.waitIdle(60));
     {
         std::lock_guard lock(log.mutex);
@@ -530,19 +543,17 @@ TEST_CASE("live relaxer: a drag goes on along its path from a shape the document
         REQUIRE(predicted != log.states.end());
         REQUIRE(predicted->steps == 0);
         REQUIRE(live.latest()->positions != predicted->positions);
-        scene.doc.adoptPositions(predicted->positions, false);
+        doc.adoptPositions(predicted->positions, false);
     }
-    bar *= 1.005;
-    scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt, bar}, true);
-    const auto settled = previewAndShow(scene.doc, live, 5);
-    checkAtColdEquilibrium(scene.doc, *settled);
+    drag.step();
+    const auto settled = previewAndShow(doc, live, 5);
+    checkAtColdEquilibrium(doc, *settled);
     std::lock_guard lock(log.mutex);
     const auto first = log.firstOf(5);
     REQUIRE(first != log.states.end());
     INFO("first shape of the next step after " << first->steps << " iterations, residual "
                                                << first->residual);
-    CHECK(first->steps == 0); // predicted, and shown at once
-    CHECK(first->residual > 0);
+    checkShownAtOnce(doc, *first); // predicted
     CHECK(first->residual <= 1.0);
 }
 
@@ -550,8 +561,8 @@ TEST_CASE("live relaxer: a drag step cut short near its equilibrium stays on the
           "[live]") {
     // The worker is held at step 4's first shape until step 5's edit has come: step 4 then
     // ends after its first iteration, cancelled, and step 5 goes on along the path through it.
-    Scene scene;
-    scene.doc.execute(SetRowsCommand{scene.net, 20});
+    BarDrag drag;
+    Document& doc = drag.scene.doc;
     PublishedStates log;
     std::promise<void> started, released;
     std::shared_future<void> release = released.get_future().share();
@@ -566,26 +577,18 @@ TEST_CASE("live relaxer: a drag step cut short near its equilibrium stays on the
         }
     };
     LiveRelaxer live(options);
-    REQUIRE(previewAndShow(scene.doc, live, 1)->converged);
-    double bar = 0.35;
-    for (std::uint64_t generation = 2; generation <= 3; ++generation) {
-        bar *= 1.005;
-        scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt, bar}, true);
-        REQUIRE(previewAndShow(scene.doc, live, generation)->converged);
-    }
-    bar *= 1.005;
-    scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt, bar}, true);
-    live.preview(scene.doc.compiled().system, 4);
+    drag.settleAndStep(live, 2);
+    drag.step();
+    live.preview(doc.compiled().system, 4);
     REQUIRE(started.get_future().wait_for(std::chrono::seconds(60)) == std::future_status::ready);
-    bar *= 1.005;
-    scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt, bar}, true);
-    live.preview(scene.doc.compiled().system, 5);
+    drag.step();
+    live.preview(doc.compiled().system, 5);
     released.set_value();
     REQUIRE(live.waitIdle(60));
     const auto settled = live.latest();
     REQUIRE(settled->generation == 5);
-    scene.doc.adoptPositions(settled->positions, false);
-    checkAtColdEquilibrium(scene.doc, *settled);
+    doc.adoptPositions(settled->positions, false);
+    checkAtColdEquilibrium(doc, *settled);
     std::lock_guard lock(log.mutex);
     const auto stopped = std::find_if(log.states.begin(), log.states.end(), [](const LiveState& s) {
         return s.generation == 4 && !s.running;
@@ -596,8 +599,8 @@ TEST_CASE("live relaxer: a drag step cut short near its equilibrium stays on the
     REQUIRE(first != log.states.end());
     INFO("step 5's first shape after " << first->steps << " iterations, residual "
                                        << first->residual);
-    CHECK(first->steps == 0);   // predicted from the path, and shown at once
-    CHECK(first->residual > 0); // (a shape carried from step 4 alone would show 0)
+    // Predicted from the path (a shape carried from step 4 alone would show no residual).
+    checkShownAtOnce(doc, *first);
     CHECK(first->residual <= 1.0);
 }
 

@@ -35,9 +35,10 @@
 //   --refine-gap S                       after each settled drag step a refine starts, as the
 //                                        studio's does, and the next edit comes S seconds later
 //                                        (a drag that pauses), cutting it short
-//   --on-screen                          keeps every published shape and prints, for the drags
-//                                        that keep the knots, how far the shape on screen one to
-//                                        four frames after each edit is from the settled one (the
+//   --on-screen                          keeps every published shape and prints, for both drags,
+//                                        how far the shape on screen one to four frames after
+//                                        each edit is from the settled one (before the first
+//                                        shape: the document's warm start of the edit; the
 //                                        copies cost the worker about 0.1 ms a shape)
 
 #include "commands/Document.h"
@@ -145,13 +146,12 @@ double largestDistance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
 struct ShownDistances {
     static constexpr int kFrames = 4;
     std::vector<double> atFrame[kFrames]; ///< m, per step, 1 ... kFrames frames after the edit
-    std::vector<double> moved;            ///< m, per step: the settled shape against the one before
+    std::vector<double> moved; ///< m, per step: the settled shape against the one at the edit
     /// `shapes` are one run's publications (seconds from the run's start), which began
-    /// `editSeconds` after the edit; `before` the shape shown before the edit, `settled` the last.
+    /// `editSeconds` after the edit; `before` the shape shown at the edit (the document's warm
+    /// start), `settled` the last.
     void add(const std::vector<PublicationLog::Shape>& shapes, double editSeconds,
              const std::vector<Vec3>& before, const std::vector<Vec3>& settled) {
-        if (before.size() != settled.size())
-            return; // a new topology: no knot-by-knot comparison with the shape before
         moved.push_back(largestDistance(before, settled));
         for (int k = 1; k <= kFrames; ++k) {
             const std::vector<Vec3>* shown = &before;
@@ -240,10 +240,13 @@ void runDrag(const char* name, Document& doc, LiveRelaxer& live, PublicationLog&
     ShownDistances distances;
     int converged = 0, withinFrame = 0;
     for (int step = 1; step <= steps; ++step) {
-        const std::vector<Vec3> before = doc.compiled().system.position;
         const auto t0 = Clock::now();
         doc.execute(commandAt(step), /*merge=*/true);
         const double editSeconds = secondsSince(t0);
+        // On screen until the preview's first shape: the document's warm start of the edit (the
+        // shape before it, new rows where the document places them).
+        const std::vector<Vec3> atEdit =
+            log.keepsShapes() ? doc.compiled().system.position : std::vector<Vec3>{};
         const StepTiming timing = previewNow(doc, live, ++generation);
         if (refineGap >= 0) { // the studio's refine after a settled preview, cut short by the drag
             live.refine(doc.compiled().system, ++generation);
@@ -251,7 +254,7 @@ void runDrag(const char* name, Document& doc, LiveRelaxer& live, PublicationLog&
         }
         shown.add(log.of(generation));
         if (log.keepsShapes()) // --on-screen
-            distances.add(log.takeShapes(generation), editSeconds, before,
+            distances.add(log.takeShapes(generation), editSeconds, atEdit,
                           doc.compiled().system.position);
         edit.push_back(editSeconds);
         relax.push_back(timing.relaxSeconds);
