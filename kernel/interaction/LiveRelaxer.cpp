@@ -210,13 +210,23 @@ LiveRelaxer::PreviewStart LiveRelaxer::preparePreviewStart(MassSpringSystem& sof
     // A shape the last preview showed on its way, taken by the document before the run ended:
     // the edit goes on from where it ended.
     if (previous_ && carried == 0 && previous_->knotCount() == soft.knotCount() &&
-        previous_->origin == soft.origin &&
-        std::count(shownOnTheWay_.begin(), shownOnTheWay_.end(), shapeHash(soft.position)) > 0)
+        previous_->origin == soft.origin && wasShownOnTheWay(soft.position))
         soft.position = previous_->position;
     // Rows added below go on with the shape above them, and the tensions the start shape had
     // before the edit make the fast path's predictor. The same edit once more (a drag's next
     // step) goes on as far as the last step went; its hint is then the new law's tensions there.
+    const bool settledBefore = previous_ && previousSettled_;
     const std::size_t continued = previous_ ? continueNewRows(*previous_, soft) : 0;
+    start.rowStep = continued > 0 && settledBefore;
+    // A row drag's next step is shown at once as far on as the last one moved the knots (the
+    // rows it adds placed from the rows so moved above them); the run starts from the shape
+    // before, whose tensions make its predictor, which a moved start would count twice.
+    if (repeatsRowStep(soft, carried)) {
+        MassSpringSystem ahead = soft;
+        continueRowDrag(*rowDragBefore_, *previous_, ahead);
+        continueNewRows(*previous_, ahead);
+        start.shown = std::move(ahead.position);
+    }
     start.positions = soft.position; // the step is measured from here
     start.settled = previous_ && previousSettled_ && previous_->position == soft.position;
     const std::optional<double> predicted =
@@ -385,6 +395,7 @@ void LiveRelaxer::runJob(Job& job) {
     } catch (const UserError& e) {
         previous_.reset();
         previousSettled_ = false;
+        rowDragBefore_.reset();
         previewCancelled_ = false;
         refined_.reset();
         shownOnTheWay_.clear();
@@ -443,11 +454,16 @@ void LiveRelaxer::runPreview(JobRun& run) {
             path_.skip(start.restChange, kRepeatTolerance);
         if (!unmoved)
             previousSettled_ = near;
+        rowDragBefore_.reset();
     } else {
         run.state.converged = r.converged;
         finish(run, r.stopReason, soft.position);
         rememberStep(r.converged, start, soft);
         previousSettled_ = r.converged;
+        if (r.converged && start.rowStep)
+            rowDragBefore_ = std::move(start.before); // unused below: the run moved
+        else
+            rowDragBefore_.reset();
     }
     // The next run's hint is the tensions its start had under the law it was relaxed for: a run
     // that did not move its start leaves that law to the one before it.
@@ -479,6 +495,22 @@ void LiveRelaxer::setShapePublisher(JobRun& run, RelaxOptions& o, std::size_t kn
         shown.positions.assign(p.positions.begin(), p.positions.end());
         publishOnTheWay(std::move(shown));
     };
+}
+
+bool LiveRelaxer::repeatsRowStep(const MassSpringSystem& soft, std::size_t carried) const {
+    if (!rowDragBefore_ || !previous_ || !previousSettled_ || carried > 0 ||
+        !sameKnotsWhereMatched(*previous_, soft))
+        return false;
+    const auto count = [](const MassSpringSystem& s) {
+        return static_cast<std::ptrdiff_t>(s.knotCount());
+    };
+    const std::ptrdiff_t last = count(*previous_) - count(*rowDragBefore_);
+    return last != 0 && count(soft) - count(*previous_) == last;
+}
+
+bool LiveRelaxer::wasShownOnTheWay(const std::vector<Vec3>& positions) const {
+    const std::uint64_t hash = shapeHash(positions);
+    return std::find(shownOnTheWay_.begin(), shownOnTheWay_.end(), hash) != shownOnTheWay_.end();
 }
 
 void LiveRelaxer::publishOnTheWay(LiveState shown) {
@@ -523,6 +555,7 @@ void LiveRelaxer::runRefine(JobRun& run) {
     const bool settledBeforeRefine = previousSettled_;
     previous_.reset();
     previousSettled_ = false;
+    rowDragBefore_.reset();
     previewCancelled_ = false;
     path_.clear();
     MassSpringSystem& system = run.job.system;

@@ -461,6 +461,55 @@ TEST_CASE("live relaxer: new rows are shown where the rows above lead before the
     CHECK(published.back().steps > 0);
 }
 
+namespace {
+
+/// The knot of `system` whose first reference is `ref` (fails the test when none is).
+std::size_t knotAt(const MassSpringSystem& system, const KnotRef& ref) {
+    for (std::size_t j = 0; j < system.knotCount(); ++j)
+        if (system.refStart[j] < system.refStart[j + 1] && system.refs[system.refStart[j]] == ref)
+            return j;
+    FAIL("no knot at row " << ref.row << ", column " << ref.column);
+    return 0;
+}
+
+} // namespace
+
+TEST_CASE("live relaxer: a row drag's next step is shown at once as far on as the last step moved "
+          "the knots",
+          "[live]") {
+    Scene scene;
+    Document& doc = scene.doc;
+    PublishedStates log;
+    LiveRelaxer live(log.options());
+    doc.execute(SetRowsCommand{scene.net, 12});
+    REQUIRE(previewAndShow(doc, live, 1)->converged);
+    const MassSpringSystem at12 = doc.compiled().system;
+    doc.execute(SetRowsCommand{scene.net, 13}, true);
+    REQUIRE(previewAndShow(doc, live, 2)->converged);
+    const MassSpringSystem at13 = doc.compiled().system;
+
+    // The third row count: its first shape, before any iteration, against the settled one and
+    // against the rows above continued alone (the shape a row step showed before).
+    doc.execute(SetRowsCommand{scene.net, 14}, true);
+    MassSpringSystem continuedOnly = doc.compiled().system;
+    continueNewRows(at13, continuedOnly);
+    const auto settled = previewAndShow(doc, live, 3);
+    REQUIRE(settled->converged);
+    std::lock_guard lock(log.mutex);
+    const auto first = log.firstOf(3);
+    REQUIRE(first != log.states.end());
+    CHECK(first->steps == 0);
+    const double before = maxDistance(continuedOnly.position, settled->positions);
+    const double shown = maxDistance(first->positions, settled->positions);
+    INFO("rows continued alone " << before << " m from the settled shape, shown " << shown << " m");
+    CHECK(shown < 0.5 * before);
+    // A knot of a row all three have moves on as it moved from 12 rows to 13.
+    const KnotRef ref{scene.net, 6, 5};
+    const Vec3 last = at13.position[knotAt(at13, ref)];
+    const Vec3 expected = last + (last - at12.position[knotAt(at12, ref)]);
+    CHECK(distance(first->positions[knotAt(doc.compiled().system, ref)], expected) < 1e-12);
+}
+
 TEST_CASE("live relaxer: a drag step predicted near its equilibrium is shown before its first "
           "iteration",
           "[live]") {
