@@ -222,10 +222,8 @@ LiveRelaxer::PreviewStart LiveRelaxer::preparePreviewStart(MassSpringSystem& sof
     // rows it adds placed from the rows so moved above them); the run starts from the shape
     // before, whose tensions make its predictor, which a moved start would count twice.
     if (repeatsRowStep(soft, carried)) {
-        MassSpringSystem ahead = soft;
-        continueRowDrag(*rowDragBefore_, *previous_, ahead);
-        continueNewRows(*previous_, ahead);
-        start.shown = std::move(ahead.position);
+        start.shown = soft.position;
+        continueRowDrag(*rowDragBefore_, *previous_, soft, start.shown);
     }
     start.positions = soft.position; // the step is measured from here
     start.settled = previous_ && previousSettled_ && previous_->position == soft.position;
@@ -238,8 +236,7 @@ LiveRelaxer::PreviewStart LiveRelaxer::preparePreviewStart(MassSpringSystem& sof
             near ? nullptr : agreedPrediction(start.positions, start.residual))
         start.shown = *agreed;
     start.showAtOnce = carried + continued > 0 || near || !start.shown.empty();
-    if (previous_)
-        start.hint = startTensions(repeated ? soft : *previous_, soft);
+    start.repeated = repeated;
     start.before = std::move(previous_);
     previous_.reset();
     return start;
@@ -414,27 +411,29 @@ void LiveRelaxer::runPreview(JobRun& run) {
     scaleStiffness(soft, scale);
     PreviewStart start = preparePreviewStart(soft);
     shownOnTheWay_.clear();
-    RelaxOptions o = jobOptions();
-    o.startTensions = start.hint;
-    o.tolerance = options_.previewTolerance;
-    o.continuation = relaxer_->name() == "fast";
-    o.singlePrecisionSteps = options_.singlePrecisionSteps;
-    o.focusAfterHint = true; // a slack net's folds settle on their own after a drag
-    o.reuseFactor = true;    // along a drag, a step often needs no new factorization
-    o.hintBeforeCancel = true; // a drag as fast as the frames still moves the net
     run.state.stiffnessScale = scale;
     double lastShown = 0;
     if (start.showAtOnce) {
         // New rows are shown at once where the rows above lead them: the caller has them at the
         // document's Eq. 2 offsets, and the first iteration comes after the new topology's
         // analysis (tens of ms at 20,000 knots). So are a carried shape and a drag's step
-        // predicted near its equilibrium.
+        // predicted near its equilibrium. Before the hint below (5 ms at 20,000 knots).
         LiveState shown = run.state;
         shown.residual = start.residual;
         shown.seconds = lastShown = run.seconds();
         shown.positions = start.shown.empty() ? soft.position : start.shown;
         publishOnTheWay(std::move(shown));
     }
+    RelaxOptions o = jobOptions();
+    if (start.before)
+        start.hint = startTensions(start.repeated ? soft : *start.before, soft);
+    o.startTensions = start.hint;
+    o.tolerance = options_.previewTolerance;
+    o.continuation = relaxer_->name() == "fast";
+    o.singlePrecisionSteps = options_.singlePrecisionSteps;
+    o.focusAfterHint = true;   // a slack net's folds settle on their own after a drag
+    o.reuseFactor = true;      // along a drag, a step often needs no new factorization
+    o.hintBeforeCancel = true; // a drag as fast as the frames still moves the net
     setShapePublisher(run, o, soft.knotCount(), scale, lastShown);
     const RelaxResult r = relaxer_->relax(soft, o);
     run.state.steps = r.steps;

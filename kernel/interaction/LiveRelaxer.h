@@ -212,10 +212,11 @@ class LiveRelaxer {
     const std::vector<Vec3>* agreedPrediction(const std::vector<Vec3>& from,
                                               double& residual) const;
     /// How a preview starts (worker thread only): `soft`'s positions carried on from a cancelled
-    /// preview, new rows continued, a repeated edit extrapolated (LastStep); the hint from the
-    /// system before. previous_ moves into `before`.
+    /// preview, new rows continued, a repeated edit extrapolated (DragPath); what is shown at
+    /// once. previous_ moves into `before`; the hint (from it) is the caller's to make.
     struct PreviewStart {
         std::vector<double> hint;       ///< RelaxOptions::startTensions; empty = none
+        bool repeated = false;          ///< extrapolated along the drag's path: the hint's law
         std::vector<Vec3> positions;    ///< soft's before the extrapolation: a step's origin
         std::vector<double> restChange; ///< extrapolate()'s
         /// carried, continued or predicted near its equilibrium: published before iterating

@@ -197,40 +197,37 @@ std::size_t continueNewRows(const MassSpringSystem& previous, MassSpringSystem& 
 }
 
 std::size_t continueRowDrag(const MassSpringSystem& before, const MassSpringSystem& previous,
-                            MassSpringSystem& next) {
-    if (before.origin != previous.origin || previous.origin != next.origin)
+                            const MassSpringSystem& next, std::vector<Vec3>& positions) {
+    if (before.origin != previous.origin || previous.origin != next.origin ||
+        positions.size() != next.knotCount())
         return 0;
-    // Each knot of `previous`'s motion in its step, by key in (piece, row, column) order: a knot
-    // `before` lacked (a row that step added) moves as the knot above it did.
-    const auto beforeKnots = knotsByKey(before);
+    const auto beforeKnots = knotsByKey(before), previousKnots = knotsByKey(previous);
+    // next's knots in (piece, row, column) order, so that a knot's column above has moved first
     std::vector<std::pair<std::uint64_t, std::uint32_t>> order;
-    order.reserve(previous.knotCount());
-    for (std::size_t j = 0; j < previous.knotCount(); ++j)
-        if (std::uint64_t key = 0; knotKey(previous, j, key))
+    order.reserve(next.knotCount());
+    for (std::size_t j = 0; j < next.knotCount(); ++j)
+        if (std::uint64_t key = 0; knotKey(next, j, key))
             order.emplace_back(key, static_cast<std::uint32_t>(j));
     std::sort(order.begin(), order.end());
     constexpr std::uint64_t kRow = std::uint64_t{1} << 20;
     std::unordered_map<std::uint64_t, Vec3> motion;
     motion.reserve(order.size());
+    std::size_t count = 0;
     for (const auto& [key, j] : order) {
+        const auto p = previousKnots.find(key);
+        const auto b = beforeKnots.find(key);
         Vec3 moved{0, 0, 0};
-        if (const auto b = beforeKnots.find(key); b != beforeKnots.end())
-            moved = previous.position[j] - before.position[b->second];
+        if (p != previousKnots.end() && b != beforeKnots.end())
+            moved = previous.position[p->second] - before.position[b->second];
         else if (const auto up = motion.find(key - kRow);
                  (key >> 20 & (kRow - 1)) > 0 && up != motion.end())
-            moved = up->second;
+            moved = up->second; // a row new in `previous` or in `next`: as the knot above
         motion.emplace(key, moved);
-    }
-    std::size_t count = 0;
-    const auto previousKnots = knotsByKey(previous);
-    for (std::size_t j = 0; j < next.knotCount(); ++j) {
-        std::uint64_t key = 0;
-        if (next.fixed[j] || !knotKey(next, j, key))
+        if (next.fixed[j])
             continue;
-        if (const auto p = previousKnots.find(key); p != previousKnots.end()) {
-            next.position[j] = previous.position[p->second] + motion.at(key);
-            ++count;
-        }
+        positions[j] =
+            (p != previousKnots.end() ? previous.position[p->second] : positions[j]) + moved;
+        ++count;
     }
     return count;
 }

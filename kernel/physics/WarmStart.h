@@ -36,13 +36,13 @@ bool sameKnotsWhereMatched(const MassSpringSystem& previous, const MassSpringSys
 bool heldAtTheSamePlaces(const MassSpringSystem& previous, const MassSpringSystem& next);
 std::size_t continueNewRows(const MassSpringSystem& previous, MassSpringSystem& next);
 /// A row drag's next step (rows added or removed again as in the step from `before` to
-/// `previous`, both relaxed): free knots of `next` that `previous` had move on from there by the
-/// motion they had in that step, previous + (previous - before); a knot `before` lacked (a row
-/// that step added) by the motion of the knot above it in its column. Matched by their first
-/// (piece, row, column); nothing moves when the three are measured from other origins. Returns
-/// how many moved. continueNewRows then places the rows new in `next` from the rows so moved.
+/// `previous`, both relaxed), its new rows placed by continueNewRows: `positions` (next's) of free
+/// knots that `previous` had become previous + (previous - before), the motion they had in that
+/// step; knots that `before` or `previous` lacked (the rows either step added) move as the knot
+/// above them in their column. Matched by their first (piece, row, column); nothing moves when
+/// the three are measured from other origins. Returns how many moved.
 std::size_t continueRowDrag(const MassSpringSystem& before, const MassSpringSystem& previous,
-                            MassSpringSystem& next);
+                            const MassSpringSystem& next, std::vector<Vec3>& positions);
 /// The warm-start hint for relaxing `next` after `previous` (RelaxOptions::startTensions): for
 /// every bar of `next` that joins the same two (piece, row, column) knots as a bar of
 /// `previous`, that bar's tension under `previous`'s rest length and stiffness at `next`'s
