@@ -219,8 +219,9 @@ LiveRelaxer::PreviewStart LiveRelaxer::preparePreviewStart(MassSpringSystem& sof
     const std::size_t continued = previous_ ? continueNewRows(*previous_, soft) : 0;
     start.rowStep = continued > 0 && settledBefore;
     // A row drag's next step is shown at once as far on as the last one moved the knots (the
-    // rows it adds placed from the rows so moved above them); the run starts from the shape
-    // before, whose tensions make its predictor, which a moved start would count twice.
+    // rows it adds with the knots above them). The run starts from the shape before: from the
+    // moved one the tube's row steps took 4 iterations instead of 2 (the hint, the tensions of
+    // the shape before, makes the first iteration the edit's whole response).
     if (repeatsRowStep(soft, carried)) {
         start.shown = soft.position;
         continueRowDrag(*rowDragBefore_, *previous_, soft, start.shown);
