@@ -212,17 +212,19 @@ LiveRelaxer::PreviewStart LiveRelaxer::preparePreviewStart(MassSpringSystem& sof
     if (previous_ && carried == 0 && previous_->knotCount() == soft.knotCount() &&
         previous_->origin == soft.origin && wasShownOnTheWay(soft.position))
         soft.position = previous_->position;
+    // A change of the knot count on the same knots from a settled shape: rows added or removed.
+    start.rowStep = previous_ && previousSettled_ && carried == 0 &&
+                    previous_->knotCount() != soft.knotCount() &&
+                    sameKnotsWhereMatched(*previous_, soft);
     // Rows added below go on with the shape above them, and the tensions the start shape had
     // before the edit make the fast path's predictor. The same edit once more (a drag's next
     // step) goes on as far as the last step went; its hint is then the new law's tensions there.
-    const bool settledBefore = previous_ && previousSettled_;
     const std::size_t continued = previous_ ? continueNewRows(*previous_, soft) : 0;
-    start.rowStep = continued > 0 && settledBefore;
     // A row drag's next step is shown at once as far on as the last one moved the knots (the
-    // rows it adds with the knots above them). The run starts from the shape before: from the
-    // moved one the tube's row steps took 4 iterations instead of 2 (the hint, the tensions of
-    // the shape before, makes the first iteration the edit's whole response).
-    if (repeatsRowStep(soft, carried)) {
+    // rows it adds with the knots above them; rows removed, the others). The run starts from the
+    // shape before: from the moved one the tube's row steps took 4 iterations instead of 2 (the
+    // hint, the tensions of the shape before, makes the first iteration the edit's whole response).
+    if (repeatsRowStep(soft, start.rowStep)) {
         start.shown = soft.position;
         continueRowDrag(*rowDragBefore_, *previous_, soft, start.shown);
     }
@@ -497,9 +499,8 @@ void LiveRelaxer::setShapePublisher(JobRun& run, RelaxOptions& o, std::size_t kn
     };
 }
 
-bool LiveRelaxer::repeatsRowStep(const MassSpringSystem& soft, std::size_t carried) const {
-    if (!rowDragBefore_ || !previous_ || !previousSettled_ || carried > 0 ||
-        !sameKnotsWhereMatched(*previous_, soft))
+bool LiveRelaxer::repeatsRowStep(const MassSpringSystem& soft, bool rowStep) const {
+    if (!rowStep || !rowDragBefore_)
         return false;
     const auto count = [](const MassSpringSystem& s) {
         return static_cast<std::ptrdiff_t>(s.knotCount());

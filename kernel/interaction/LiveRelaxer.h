@@ -171,13 +171,13 @@ class LiveRelaxer {
     /// under previous_'s law (converged, or cut short after an iteration that came near): a drag's
     /// path may start there.
     bool previousSettled_ = false;
-    /// Worker thread only: after a preview of a row step (rows continued from a settled shape)
-    /// that converged, the system before that step: a row drag's next step of the same size
+    /// Worker thread only: after a preview of a row step (PreviewStart::rowStep) that converged,
+    /// the system before that step: a row drag's next step of the same size
     /// goes on along the motion of the last one (continueRowDrag). Empty otherwise.
     std::optional<MassSpringSystem> rowDragBefore_;
-    /// Whether `soft` (after carry, `carried` knots) repeats the last row step on its settled
-    /// shape: the same change of the knot count again.
-    bool repeatsRowStep(const MassSpringSystem& soft, std::size_t carried) const;
+    /// Whether `soft`, a row step (PreviewStart::rowStep), repeats the last one: the same change
+    /// of the knot count again.
+    bool repeatsRowStep(const MassSpringSystem& soft, bool rowStep) const;
     /// Worker thread only: the last run was a preview superseded by a newer one before its end
     /// was published; previous_ holds where it stopped, which the next preview goes on from.
     bool previewCancelled_ = false;
@@ -224,7 +224,8 @@ class LiveRelaxer {
         /// a prediction shown at once that is not the start (agreedPrediction); empty = none
         std::vector<Vec3> shown;
         double residual = 0; ///< of the predicted start, or of `shown`; 0 = not computed
-        /// new rows continued from a settled shape: a row drag's step (rowDragBefore_)
+        /// the knot count changed on the same knots (rows added or removed) from a settled
+        /// shape: a row drag's step (rowDragBefore_)
         bool rowStep = false;
         /// `positions` are where the run before ended near its equilibrium (previousSettled_)
         bool settled = false;

@@ -510,6 +510,31 @@ TEST_CASE("live relaxer: a row drag's next step is shown at once as far on as th
     CHECK(distance(first->positions[knotAt(doc.compiled().system, ref)], expected) < 1e-12);
 }
 
+TEST_CASE("live relaxer: a row drag that removes rows is shown at once as far on as the last step "
+          "moved the knots",
+          "[live]") {
+    Scene scene;
+    Document& doc = scene.doc;
+    PublishedStates log;
+    LiveRelaxer live(log.options());
+    doc.execute(SetRowsCommand{scene.net, 16});
+    REQUIRE(previewAndShow(doc, live, 1)->converged);
+    doc.execute(SetRowsCommand{scene.net, 15}, true);
+    REQUIRE(previewAndShow(doc, live, 2)->converged);
+    doc.execute(SetRowsCommand{scene.net, 14}, true);
+    const std::vector<Vec3> atEdit = doc.compiled().system.position; // the rows kept, unmoved
+    const auto settled = previewAndShow(doc, live, 3);
+    REQUIRE(settled->converged);
+    std::lock_guard lock(log.mutex);
+    const auto first = log.firstOf(3);
+    REQUIRE(first != log.states.end());
+    CHECK(first->steps == 0);
+    const double before = maxDistance(atEdit, settled->positions);
+    const double shown = maxDistance(first->positions, settled->positions);
+    INFO("the rows kept " << before << " m from the settled shape, shown " << shown << " m");
+    CHECK(shown < 0.5 * before);
+}
+
 TEST_CASE("live relaxer: a drag step predicted near its equilibrium is shown before its first "
           "iteration",
           "[live]") {
