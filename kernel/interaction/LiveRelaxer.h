@@ -172,8 +172,8 @@ class LiveRelaxer {
     /// path may start there.
     bool previousSettled_ = false;
     /// Worker thread only: after a preview of a row step (PreviewStart::rowStep) that converged,
-    /// the system before that step: a row drag's next step of the same size
-    /// goes on along the motion of the last one (continueRowDrag). Empty otherwise.
+    /// the system before that step: a row drag's next step of the same size is shown along the
+    /// motion of the last one (continueRowDrag). Empty otherwise.
     std::optional<MassSpringSystem> rowDragBefore_;
     /// Whether `soft`, a row step (PreviewStart::rowStep), repeats the last one: the same change
     /// of the knot count again.
@@ -207,8 +207,7 @@ class LiveRelaxer {
                                       std::vector<double>& restChange);
     /// After extrapolate(): its prediction of the lowest residual when the one of the degree next
     /// to it agrees with it, both moving the knots from `from` alike (to within kAgreement of the
-    /// motion), else null (as when it made none).
-    /// `residual` gets its residual.
+    /// motion), its residual then in `residual`; else null (as when it made none).
     const std::vector<Vec3>* agreedPrediction(const std::vector<Vec3>& from,
                                               double& residual) const;
     /// How a preview starts (worker thread only): `soft`'s positions carried on from a cancelled
@@ -219,9 +218,11 @@ class LiveRelaxer {
         bool repeated = false;          ///< extrapolated along the drag's path: the hint's law
         std::vector<Vec3> positions;    ///< soft's before the extrapolation: a step's origin
         std::vector<double> restChange; ///< extrapolate()'s
-        /// carried, continued or predicted near its equilibrium: published before iterating
+        /// carried, continued, predicted near its equilibrium, or `shown`: published before
+        /// iterating
         bool showAtOnce = false;
-        /// a prediction shown at once that is not the start (agreedPrediction); empty = none
+        /// a prediction shown at once in place of the start (agreedPrediction, a row drag's
+        /// continueRowDrag); empty = none
         std::vector<Vec3> shown;
         double residual = 0; ///< of the predicted start, or of `shown`; 0 = not computed
         /// the knot count changed on the same knots (rows added or removed) from a settled
