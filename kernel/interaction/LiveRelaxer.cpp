@@ -1,5 +1,6 @@
 #include "interaction/LiveRelaxer.h"
 
+#include "geometry/ShapeHash.h"
 #include "model/Error.h"
 #include "physics/Backends.h"
 #include "physics/Forces.h"
@@ -7,7 +8,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <limits>
 
 #ifdef __linux__
@@ -52,18 +52,6 @@ constexpr double kNearEquilibrium = 1.0;
 // 20,000-knot slack sheet of netsculpt-bench-live 16 of 20 steps are shown so, within 0.7-17 mm of
 // their settled shape (median 6.5 mm), against 37-38 mm for the shape before the edit.
 constexpr double kAgreement = 0.25;
-
-/// FNV-1a over the positions' bits: the same shape, the same hash.
-std::uint64_t shapeHash(const std::vector<Vec3>& positions) {
-    std::uint64_t hash = 1469598103934665603ull;
-    for (const Vec3& p : positions)
-        for (double v : {p.x, p.y, p.z}) {
-            std::uint64_t bits = 0;
-            std::memcpy(&bits, &v, sizeof bits);
-            hash = (hash ^ bits) * 1099511628211ull;
-        }
-    return hash;
-}
 
 } // namespace
 
@@ -449,13 +437,14 @@ void LiveRelaxer::runPreview(JobRun& run) {
         // A step cut short goes on the drag's path when an iteration brought it near its
         // equilibrium, else the next step takes on its edit; one that did not move leaves its
         // edit to the next's change, which is measured from the system before it.
-        const bool near = r.converged || (r.steps > 0 && r.residual <= kNearEquilibrium);
-        if (!unmoved && near)
-            rememberStep(true, start, soft);
-        else if (!unmoved)
-            path_.skip(start.restChange, kRepeatTolerance);
-        if (!unmoved)
+        if (!unmoved) {
+            const bool near = r.converged || (r.steps > 0 && r.residual <= kNearEquilibrium);
+            if (near)
+                rememberStep(true, start, soft);
+            else
+                path_.skip(start.restChange, kRepeatTolerance);
             previousSettled_ = near;
+        }
         rowDragBefore_.reset();
     } else {
         run.state.converged = r.converged;

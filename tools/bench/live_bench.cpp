@@ -41,21 +41,21 @@
 //                                        shape: the document's warm start of the edit; the
 //                                        copies cost the worker about 0.1 ms a shape)
 
-#include "commands/Document.h"
-#include "interaction/DemoScenes.h"
-#include "commands/HeapSettings.h"
-#include "interaction/LiveRelaxer.h"
 #include "InstructionSet.h"
+#include "commands/Document.h"
+#include "commands/HeapSettings.h"
+#include "geometry/ShapeHash.h"
+#include "interaction/DemoScenes.h"
+#include "interaction/LiveRelaxer.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <functional>
 #include <mutex>
-#include <thread>
 #include <string>
+#include <thread>
 #include <vector>
 
 using namespace netsculpt;
@@ -265,13 +265,7 @@ void runDrag(const char* name, Document& doc, LiveRelaxer& live, PublicationLog&
     }
     doc.endGesture();
     // The shape after the drag, hashed bit for bit: the same on every run and thread count.
-    std::uint64_t hash = 1469598103934665603ull;
-    for (const Vec3& p : doc.compiled().system.position)
-        for (double v : {p.x, p.y, p.z}) {
-            std::uint64_t bits = 0;
-            std::memcpy(&bits, &v, sizeof bits);
-            hash = (hash ^ bits) * 1099511628211ull;
-        }
+    const std::uint64_t hash = shapeHash(doc.compiled().system.position);
     std::printf("%-11s shape hash %016llx\n", name, static_cast<unsigned long long>(hash));
     std::printf("%-11s %5d steps  edit median %6.1f ms  re-relax median %6.1f ms (max %6.1f)  "
                 "edit to shape median %6.1f ms, 90%% %6.1f ms  within one 30 fps frame: %d/%d  "
