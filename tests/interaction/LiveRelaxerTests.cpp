@@ -472,6 +472,36 @@ std::size_t knotAt(const MassSpringSystem& system, const KnotRef& ref) {
     return 0;
 }
 
+/// The scene's net settled at `rows[0]` rows (generation 1), then taken to each of the other row
+/// counts in turn as a drag's steps, each previewed and shown; the system at each, as shown.
+std::vector<MassSpringSystem> dragRows(Scene& scene, LiveRelaxer& live,
+                                       std::initializer_list<int> rows) {
+    std::vector<MassSpringSystem> shown;
+    for (int count : rows) {
+        scene.doc.execute(SetRowsCommand{scene.net, count}, !shown.empty());
+        REQUIRE(previewAndShow(scene.doc, live, shown.size() + 1)->converged);
+        shown.push_back(scene.doc.compiled().system);
+    }
+    return shown;
+}
+
+/// The first shape of `generation` (the caller holds log's mutex): published before any
+/// iteration and nearer `settled` than half the distance of `unpredicted`, the shape a step
+/// showed without the row drag's prediction.
+const LiveState& checkShownNearer(const PublishedStates& log, std::uint64_t generation,
+                                  const std::vector<Vec3>& unpredicted,
+                                  const std::vector<Vec3>& settled) {
+    const auto first = log.firstOf(generation);
+    REQUIRE(first != log.states.end());
+    CHECK(first->steps == 0);
+    const double before = maxDistance(unpredicted, settled);
+    const double shown = maxDistance(first->positions, settled);
+    INFO("without the prediction " << before << " m from the settled shape, shown " << shown
+                                   << " m");
+    CHECK(shown < 0.5 * before);
+    return *first;
+}
+
 } // namespace
 
 TEST_CASE("live relaxer: a row drag's next step is shown at once as far on as the last step moved "
@@ -481,12 +511,8 @@ TEST_CASE("live relaxer: a row drag's next step is shown at once as far on as th
     Document& doc = scene.doc;
     PublishedStates log;
     LiveRelaxer live(log.options());
-    doc.execute(SetRowsCommand{scene.net, 12});
-    REQUIRE(previewAndShow(doc, live, 1)->converged);
-    const MassSpringSystem at12 = doc.compiled().system;
-    doc.execute(SetRowsCommand{scene.net, 13}, true);
-    REQUIRE(previewAndShow(doc, live, 2)->converged);
-    const MassSpringSystem at13 = doc.compiled().system;
+    const std::vector<MassSpringSystem> shown = dragRows(scene, live, {12, 13});
+    const MassSpringSystem &at12 = shown[0], &at13 = shown[1];
 
     // The third row count: its first shape, before any iteration, against the settled one and
     // against the rows above continued alone (the shape a row step showed before).
@@ -496,18 +522,12 @@ TEST_CASE("live relaxer: a row drag's next step is shown at once as far on as th
     const auto settled = previewAndShow(doc, live, 3);
     REQUIRE(settled->converged);
     std::lock_guard lock(log.mutex);
-    const auto first = log.firstOf(3);
-    REQUIRE(first != log.states.end());
-    CHECK(first->steps == 0);
-    const double before = maxDistance(continuedOnly.position, settled->positions);
-    const double shown = maxDistance(first->positions, settled->positions);
-    INFO("rows continued alone " << before << " m from the settled shape, shown " << shown << " m");
-    CHECK(shown < 0.5 * before);
+    const LiveState& first = checkShownNearer(log, 3, continuedOnly.position, settled->positions);
     // A knot of a row all three have moves on as it moved from 12 rows to 13.
     const KnotRef ref{scene.net, 6, 5};
     const Vec3 last = at13.position[knotAt(at13, ref)];
     const Vec3 expected = last + (last - at12.position[knotAt(at12, ref)]);
-    CHECK(distance(first->positions[knotAt(doc.compiled().system, ref)], expected) < 1e-12);
+    CHECK(distance(first.positions[knotAt(doc.compiled().system, ref)], expected) < 1e-12);
 }
 
 TEST_CASE("live relaxer: a row drag that removes rows is shown at once as far on as the last step "
@@ -517,22 +537,13 @@ TEST_CASE("live relaxer: a row drag that removes rows is shown at once as far on
     Document& doc = scene.doc;
     PublishedStates log;
     LiveRelaxer live(log.options());
-    doc.execute(SetRowsCommand{scene.net, 16});
-    REQUIRE(previewAndShow(doc, live, 1)->converged);
-    doc.execute(SetRowsCommand{scene.net, 15}, true);
-    REQUIRE(previewAndShow(doc, live, 2)->converged);
+    dragRows(scene, live, {16, 15});
     doc.execute(SetRowsCommand{scene.net, 14}, true);
     const std::vector<Vec3> atEdit = doc.compiled().system.position; // the rows kept, unmoved
     const auto settled = previewAndShow(doc, live, 3);
     REQUIRE(settled->converged);
     std::lock_guard lock(log.mutex);
-    const auto first = log.firstOf(3);
-    REQUIRE(first != log.states.end());
-    CHECK(first->steps == 0);
-    const double before = maxDistance(atEdit, settled->positions);
-    const double shown = maxDistance(first->positions, settled->positions);
-    INFO("the rows kept " << before << " m from the settled shape, shown " << shown << " m");
-    CHECK(shown < 0.5 * before);
+    checkShownNearer(log, 3, atEdit, settled->positions);
 }
 
 TEST_CASE("live relaxer: a drag step predicted near its equilibrium is shown before its first "
