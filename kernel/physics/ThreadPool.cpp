@@ -27,7 +27,7 @@ ThreadPool::ThreadPool(int threads) {
         threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     workers_.reserve(static_cast<std::size_t>(threads - 1));
     for (int worker = 1; worker < threads; ++worker)
-        workers_.emplace_back([this] { workerLoop(); });
+        workers_.emplace_back([this, worker] { workerLoop(worker - 1); });
 }
 
 ThreadPool::~ThreadPool() {
@@ -44,8 +44,9 @@ std::size_t ThreadPool::chunkCount(std::size_t count) const {
     return std::min(count, wanted);
 }
 
-void ThreadPool::dispatch(void* context, std::size_t chunks, Trampoline trampoline) {
+void ThreadPool::dispatch(void* context, std::size_t chunks, int helpers, Trampoline trampoline) {
     const std::uint32_t generation = generation_.load(std::memory_order_relaxed) + 1;
+    helpers_.store(helpers, std::memory_order_relaxed);
     context_.store(context, std::memory_order_relaxed);
     trampoline_.store(trampoline, std::memory_order_relaxed);
     chunks_.store(static_cast<std::uint32_t>(chunks), std::memory_order_relaxed);
@@ -88,7 +89,7 @@ void ThreadPool::claimChunks(std::uint32_t generation) {
     }
 }
 
-void ThreadPool::workerLoop() {
+void ThreadPool::workerLoop(int index) {
     std::uint32_t seen = 0;
     for (;;) {
         std::uint32_t now = generation_.load(std::memory_order_acquire);
@@ -103,7 +104,8 @@ void ThreadPool::workerLoop() {
         seen = now;
         if (stop_.load(std::memory_order_relaxed))
             return;
-        claimChunks(now);
+        if (index < helpers_.load(std::memory_order_relaxed)) // (published with generation_)
+            claimChunks(now);
     }
 }
 

@@ -2,7 +2,10 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
+#include <thread>
 #include <vector>
 
 using namespace netsculpt;
@@ -43,4 +46,35 @@ TEST_CASE("parallelFor runs every chunk once, covering the range in index order"
 TEST_CASE("A default pool has one thread per hardware thread", "[threadpool]") {
     ThreadPool pool;
     CHECK(pool.size() == static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
+}
+
+TEST_CASE("A pool that shares cores runs a task on its fair share of them, in the same chunks",
+          "[threadpool]") {
+    SharedCores cores(4);
+    ThreadPool pool(4);
+    pool.share(&cores);
+    const std::size_t count = 1000, chunks = pool.chunkCount(count);
+    const auto runOn = [&] { // the number of threads that ran chunks of one task
+        std::vector<std::thread::id> ranBy(chunks);
+        pool.parallelFor(count, [&](std::size_t, std::size_t, std::size_t chunk) {
+            ranBy[chunk] = std::this_thread::get_id();
+            std::this_thread::sleep_for(std::chrono::milliseconds(2)); // time for all to join
+        });
+        std::sort(ranBy.begin(), ranBy.end());
+        return std::unique(ranBy.begin(), ranBy.end()) - ranBy.begin();
+    };
+    cores.enter();
+    cores.enter();
+    cores.enter();
+    CHECK(pool.threadsNow() == 1); // three runs on four threads: one each
+    CHECK(runOn() == 1);
+    cores.leave();
+    CHECK(pool.threadsNow() == 2);
+    CHECK(runOn() <= 2);
+    cores.leave();
+    CHECK(pool.threadsNow() == 4); // the last run left takes the threads the others freed
+    CHECK(runOn() <= 4);
+    CHECK(pool.chunkCount(count) == chunks);
+    pool.share(nullptr);
+    CHECK(pool.threadsNow() == 4);
 }

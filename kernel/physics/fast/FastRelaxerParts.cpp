@@ -3,6 +3,7 @@
 #include "physics/fast/NewtonRelaxer.h"
 
 #include "physics/Forces.h"
+#include "physics/ThreadPool.h"
 #include "physics/fast/Components.h"
 #include "physics/fast/FocusRegion.h"
 #include "physics/fast/NewtonRun.h"
@@ -123,7 +124,8 @@ std::size_t runThreads(const RelaxOptions& options) {
 /// Then, with a thread count given, at most that many at a time; with the automatic one (the
 /// whole machine) every part at once, up to kPartsPerThread per thread: where there are more
 /// parts than cores the system shares the cores among them, so that a part that takes long does
-/// not leave a core idle at the end while the parts queued behind it run on the other.
+/// not leave a core idle at the end while the parts queued behind it run on the other; and the
+/// last part left uses the cores the others freed (SharedCores).
 std::size_t concurrentParts(const RelaxOptions& options,
                             const std::vector<std::vector<std::uint32_t>>& components,
                             const std::vector<std::size_t>& toRelax) {
@@ -142,6 +144,18 @@ std::size_t concurrentParts(const RelaxOptions& options,
     const std::size_t atOnce = options.threads > 0 ? threads : kPartsPerThread * threads;
     return std::min(atOnce, toRelax.size());
 }
+
+/// A part counted among those going on for as long as it lives.
+class PartGoingOn {
+  public:
+    explicit PartGoingOn(SharedCores& cores) : cores_(cores) { cores_.enter(); }
+    ~PartGoingOn() { cores_.leave(); }
+    PartGoingOn(const PartGoingOn&) = delete;
+    PartGoingOn& operator=(const PartGoingOn&) = delete;
+
+  private:
+    SharedCores& cores_;
+};
 
 } // namespace
 
@@ -234,8 +248,11 @@ void FastRelaxer::relaxPartsTogether(MassSpringSystem& system, const RelaxOption
         return components[toRelax[a]].size() > components[toRelax[b]].size();
     });
 
-    // The run's threads shared out (one each on a machine of two).
-    const int threadsEach = std::max(1, static_cast<int>(runThreads(options) / workers));
+    // The run's threads shared: each part's pool is the run's, used while fewer parts than
+    // threads are going on (on a machine of two, the last part left takes both cores).
+    SharedCores cores(static_cast<int>(runThreads(options)));
+    for (std::size_t c : toRelax)
+        parts_[c]->sharedCores_ = &cores;
 
     // Progress reports: one at a time, the whole net as the parts have it, their steps summed.
     std::mutex reporting;
@@ -253,7 +270,6 @@ void FastRelaxer::relaxPartsTogether(MassSpringSystem& system, const RelaxOption
                 continue; // the part keeps its start
             RelaxOptions partOptions =
                 partOptionsFor(options, parts[i], false, 0, start, tensions[i], shown);
-            partOptions.threads = threadsEach;
             if (options.progress) // (in place of partOptionsFor's: one at a time, steps summed)
                 partOptions.progress = [&, i](const RelaxProgress& p) {
                     const std::lock_guard<std::mutex> lock(reporting);
@@ -271,6 +287,7 @@ void FastRelaxer::relaxPartsTogether(MassSpringSystem& system, const RelaxOption
                     options.progress(wholeProgress);
                 };
             try {
+                const PartGoingOn going(cores);
                 results[i] = parts_[toRelax[i]]->relax(parts[i].system, partOptions);
             } catch (...) {
                 const std::lock_guard<std::mutex> lock(reporting);
@@ -290,6 +307,8 @@ void FastRelaxer::relaxPartsTogether(MassSpringSystem& system, const RelaxOption
     work();
     for (std::thread& helper : helpers)
         helper.join();
+    for (std::size_t c : toRelax)
+        parts_[c]->sharedCores_ = nullptr;
     if (failure)
         std::rethrow_exception(failure);
 
@@ -329,6 +348,7 @@ RelaxResult FastRelaxer::relaxRegion(MassSpringSystem& system, const RelaxOption
         focus_ = std::make_unique<FastRelaxer>();
         focus_->regionLevel_ = true;
     }
+    focus_->sharedCores_ = sharedCores_;
     const RelaxResult result = focus_->relax(part.system, regionOptions);
     for (std::size_t k = 0; k < part.knotOf.size(); ++k)
         system.position[part.knotOf[k]] = part.system.position[k];

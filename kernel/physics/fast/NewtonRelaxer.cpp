@@ -361,7 +361,7 @@ RelaxResult NewtonRun::finish(double tolerance) {
     // residual(system_, options_.wind), on the field: the material's law at scale 1.
     setCompression(0.0);
     setScale(1.0);
-    field_.evaluate(x_, force_, pool_.get());
+    field_.evaluate(x_, force_, pool());
     ++evaluations_;
     result.residual = field_.maxResidual(force_);
     result.converged = result.residual < tolerance;
@@ -477,6 +477,7 @@ RelaxResult FastRelaxer::relaxConnected(MassSpringSystem& system, const RelaxOpt
             return relaxRegion(system, options, start, region, tolerance, blend, stepsBefore);
         };
     NewtonRun run(system, options, *analysis_, statistics_, start, regions);
+    run.shareCores(sharedCores_);
     return run.run();
 }
 

@@ -17,9 +17,10 @@
 //   a system of its own, so each takes its own steps and an untouched part none (a part already
 //   in equilibrium is not even analysed: the first relax after opening a relaxed sculpture and
 //   editing one part orders and factorizes that part alone); several at a time when no part
-//   dominates: as many as a given thread count, sharing the threads, or with the automatic
-//   count every part at once, one thread each where they outnumber the cores
-//   (FastRelaxerParts.cpp; the same bits).
+//   dominates: as many as a given thread count, or with the automatic count every part at
+//   once, each on a thread of its own; a part uses the threads of its own pool only while fewer
+//   parts than threads are going on, so the last one left takes the cores the others freed
+//   (FastRelaxerParts.cpp, SharedCores in physics/ThreadPool.h; the same bits).
 // - Near the end, once few knots are left out of balance (a free edge creeping while the rest of
 //   its net is in equilibrium), they and a few rings of neighbours are relaxed as a system of
 //   their own, the rest held, and the whole goes on from there (physics/fast/FocusRegion.h).
@@ -96,7 +97,7 @@
 
 namespace netsculpt {
 
-
+class SharedCores;
 struct NewtonAnalysis; // the topology-dependent part of a run (NewtonRelaxer.cpp)
 
 /// What a FastRelaxer run did beyond RelaxResult, for tests and benchmarks.
@@ -184,9 +185,9 @@ class FastRelaxer final : public Relaxer {
                           const std::vector<std::vector<std::uint32_t>>& components,
                           const std::vector<std::size_t>& toRelax, TimePoint start,
                           RelaxResult& result);
-    /// ... or `workers` at a time, sharing the run's threads (one each on a machine of two; the
-    /// same bits: a part's result does not depend on its threads), the largest first; their
-    /// results added in the parts' order.
+    /// ... or `workers` at a time, sharing the run's threads (SharedCores: a part's pool is used
+    /// while fewer parts than threads are going on; the same bits: a part's result does not
+    /// depend on its threads), the largest first; their results added in the parts' order.
     void relaxPartsTogether(MassSpringSystem& system, const RelaxOptions& options,
                             const std::vector<std::vector<std::uint32_t>>& components,
                             const std::vector<std::size_t>& toRelax, std::size_t workers,
@@ -198,6 +199,9 @@ class FastRelaxer final : public Relaxer {
     std::unique_ptr<FastRelaxer> focus_; ///< relaxes focus regions (kept: its storage is reused)
     bool focusRegions_ = true;
     bool regionLevel_ = false; ///< this relaxer relaxes focus regions (its own: the same tolerance)
+    /// Set while this relaxer relaxes one of several parts at the same time: its runs use their
+    /// pools only while the parts going on leave threads to spare.
+    const SharedCores* sharedCores_ = nullptr;
 };
 
 /// FastRelaxer().relax(system, options).

@@ -240,12 +240,20 @@ class NewtonRun {
     /// `regions`: empty, every iteration is on the whole system.
     NewtonRun(MassSpringSystem& system, const RelaxOptions& options, NewtonAnalysis& analysis,
               NewtonStatistics& statistics, Clock::time_point start, RegionRelax regions = {});
+    /// Shares the machine's threads with other runs going on (null: all of the pool's).
+    void shareCores(const SharedCores* cores) {
+        if (pool_)
+            pool_->share(cores);
+    }
     RelaxResult run();
 
   private:
+    /// The run's pool, or null while its share of the machine is one thread (the sequential
+    /// kernels then, with the same bits).
+    ThreadPool* pool() const { return pool_ && pool_->threadsNow() > 1 ? pool_.get() : nullptr; }
     template <typename Body> void forRange(std::size_t count, Body&& body) {
-        if (pool_)
-            pool_->parallelFor(count, body);
+        if (ThreadPool* threads = pool())
+            threads->parallelFor(count, body);
         else if (count > 0)
             body(std::size_t{0}, count, std::size_t{0});
     }
