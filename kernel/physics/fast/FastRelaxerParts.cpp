@@ -248,8 +248,8 @@ void FastRelaxer::relaxPartsTogether(MassSpringSystem& system, const RelaxOption
         return components[toRelax[a]].size() > components[toRelax[b]].size();
     });
 
-    // The run's threads shared: each part's pool is the run's, used while fewer parts than
-    // threads are going on (on a machine of two, the last part left takes both cores).
+    // The run's threads shared: each part's pool runs a task on the part's fair share of them
+    // (on a machine of two, one thread while two parts or more go on, both for the last one).
     SharedCores cores(static_cast<int>(runThreads(options)));
     for (std::size_t c : toRelax)
         parts_[c]->sharedCores_ = &cores;

@@ -18,8 +18,9 @@
 //   in equilibrium is not even analysed: the first relax after opening a relaxed sculpture and
 //   editing one part orders and factorizes that part alone); several at a time when no part
 //   dominates: as many as a given thread count, or with the automatic count every part at
-//   once, each on a thread of its own; a part uses the threads of its own pool only while fewer
-//   parts than threads are going on, so the last one left takes the cores the others freed
+//   once, each on a thread of its own; a part's pool runs each task on the part's fair share of
+//   the machine's threads (its threads over the parts going on), so the last one left takes the
+//   cores the others freed
 //   (FastRelaxerParts.cpp, SharedCores in physics/ThreadPool.h; the same bits).
 // - Near the end, once few knots are left out of balance (a free edge creeping while the rest of
 //   its net is in equilibrium), they and a few rings of neighbours are relaxed as a system of
@@ -185,9 +186,9 @@ class FastRelaxer final : public Relaxer {
                           const std::vector<std::vector<std::uint32_t>>& components,
                           const std::vector<std::size_t>& toRelax, TimePoint start,
                           RelaxResult& result);
-    /// ... or `workers` at a time, sharing the run's threads (SharedCores: a part's pool is used
-    /// while fewer parts than threads are going on; the same bits: a part's result does not
-    /// depend on its threads), the largest first; their results added in the parts' order.
+    /// ... or `workers` at a time, sharing the run's threads (SharedCores: each part on its fair
+    /// share of them; the same bits: a part's result does not depend on its threads), the
+    /// largest first; their results added in the parts' order.
     void relaxPartsTogether(MassSpringSystem& system, const RelaxOptions& options,
                             const std::vector<std::vector<std::uint32_t>>& components,
                             const std::vector<std::size_t>& toRelax, std::size_t workers,
@@ -199,8 +200,8 @@ class FastRelaxer final : public Relaxer {
     std::unique_ptr<FastRelaxer> focus_; ///< relaxes focus regions (kept: its storage is reused)
     bool focusRegions_ = true;
     bool regionLevel_ = false; ///< this relaxer relaxes focus regions (its own: the same tolerance)
-    /// Set while this relaxer relaxes one of several parts at the same time: its runs use their
-    /// pools only while the parts going on leave threads to spare.
+    /// Set while this relaxer relaxes one of several parts at the same time: its runs' pools
+    /// share the machine's threads with the other parts'.
     const SharedCores* sharedCores_ = nullptr;
 };
 
