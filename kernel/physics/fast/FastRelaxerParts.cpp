@@ -33,6 +33,7 @@ void addPart(NewtonStatistics& whole, const NewtonStatistics& part) {
     whole.failedFactorizations += part.failedFactorizations;
     whole.singleFactorizations += part.singleFactorizations;
     whole.focusRegions += part.focusRegions;
+    whole.softFocusRegions += part.softFocusRegions;
     whole.softScale = std::min(whole.softScale, part.softScale);
     whole.reusedAnalysis = whole.reusedAnalysis && part.reusedAnalysis;
     whole.analysisSeconds += part.analysisSeconds;
@@ -327,10 +328,10 @@ void FastRelaxer::relaxPartsTogether(MassSpringSystem& system, const RelaxOption
 
 RelaxResult FastRelaxer::relaxRegion(MassSpringSystem& system, const RelaxOptions& options,
                                      TimePoint start, const std::vector<std::uint32_t>& region,
-                                     double tolerance, double blend,
+                                     double tolerance, double blend, double scale,
                                      std::int64_t stepsBefore) {
     std::vector<std::int64_t> scratch;
-    Part part = newton::regionSystem(system, region, blend, scratch);
+    Part part = newton::regionSystem(system, region, blend, scale, scratch);
     RelaxOptions withoutHint = options;
     withoutHint.startTensions = {};
     std::vector<double> tensions;
@@ -356,6 +357,8 @@ RelaxResult FastRelaxer::relaxRegion(MassSpringSystem& system, const RelaxOption
     addPart(statistics_, focus_->statistics());
     statistics_.ordering = ordering;
     ++statistics_.focusRegions;
+    if (scale < 1.0)
+        ++statistics_.softFocusRegions;
     return result;
 }
 

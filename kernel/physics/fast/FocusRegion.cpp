@@ -5,10 +5,9 @@
 namespace netsculpt::newton {
 
 std::vector<std::uint32_t> focusRegion(const ForceField& field, std::span<const Vec3> force,
-                                       std::span<const std::uint32_t> freeKnots,
-                                       double tolerance) {
-    const auto limit =
-        static_cast<std::size_t>(kFocusShare * static_cast<double>(freeKnots.size()));
+                                       std::span<const std::uint32_t> freeKnots, double tolerance,
+                                       double share) {
+    const auto limit = static_cast<std::size_t>(share * static_cast<double>(freeKnots.size()));
     if (freeKnots.size() < kFocusMinKnots)
         return {};
     std::vector<std::uint32_t> region;
@@ -39,11 +38,13 @@ std::vector<std::uint32_t> focusRegion(const ForceField& field, std::span<const 
 }
 
 Part regionSystem(const MassSpringSystem& system, const std::vector<std::uint32_t>& region,
-                  double blend, std::vector<std::int64_t>& scratch) {
+                  double blend, double scale, std::vector<std::int64_t>& scratch) {
     Part part = extractPart(system, region, scratch);
     MassSpringSystem& own = part.system;
-    for (std::size_t b = 0; b < own.barCount(); ++b)
-        own.kCompression[b] = std::max(own.kCompression[b], blend * own.kTension[b]);
+    for (std::size_t b = 0; b < own.barCount(); ++b) {
+        own.kCompression[b] = scale * std::max(own.kCompression[b], blend * own.kTension[b]);
+        own.kTension[b] *= scale;
+    }
     return part;
 }
 

@@ -206,8 +206,7 @@ void NewtonRun::runStage(const Stage& stage, bool lastStage, bool slack) {
             stopReason_ = "precision limit";
             break;
         }
-        if (stage.scale == 1.0 && steps_ - sinceRegion >= kFocusAfter &&
-            !(residual_ < stage.tolerance) &&
+        if (steps_ - sinceRegion >= kFocusAfter && !(residual_ < stage.tolerance) &&
             relaxRegion(stage.tolerance, mixed)) {
             sinceRegion = steps_;
             if (lastStage)
@@ -472,9 +471,10 @@ RelaxResult FastRelaxer::relaxConnected(MassSpringSystem& system, const RelaxOpt
     NewtonRun::RegionRelax regions;
     if (focusRegions_)
         regions = [this, &system, &options, start](const std::vector<std::uint32_t>& region,
-                                                  double tolerance, double blend,
-                                                  std::int64_t stepsBefore) {
-            return relaxRegion(system, options, start, region, tolerance, blend, stepsBefore);
+                                                   double tolerance, double blend, double scale,
+                                                   std::int64_t stepsBefore) {
+            return relaxRegion(system, options, start, region, tolerance, blend, scale,
+                               stepsBefore);
         };
     NewtonRun run(system, options, *analysis_, statistics_, start, regions);
     run.shareCores(sharedCores_);

@@ -22,9 +22,10 @@
 //   the machine's threads (its threads over the parts going on), so the last one left takes the
 //   cores the others freed
 //   (FastRelaxerParts.cpp, SharedCores in physics/ThreadPool.h; the same bits).
-// - Near the end, once few knots are left out of balance (a free edge creeping while the rest of
-//   its net is in equilibrium), they and a few rings of neighbours are relaxed as a system of
-//   their own, the rest held, and the whole goes on from there (physics/fast/FocusRegion.h).
+// - Near the end of a stage, once few knots are left out of balance (a free edge creeping while
+//   the rest of its net is in equilibrium), they and a few rings of neighbours are relaxed as a
+//   system of their own at the stage's stiffness, the rest held, and the whole goes on from there
+//   (physics/fast/FocusRegion.h).
 // - Unknowns are the free knots only (fixed knots are eliminated).
 // - Hessian per bar: k u u^T + q (I - u u^T), u the bar's direction, q = the geometric stiffness
 //   t / l >= 0. For a slack bar the negative geometric term is dropped (the positive
@@ -112,6 +113,9 @@ struct NewtonStatistics {
     /// regions of knots still out of balance relaxed on their own, the rest of their system held
     /// (FocusRegion.h; a region's own regions included)
     std::int64_t focusRegions = 0;
+    /// of them, regions taken in a stage softer than the material's (FocusRegion.h,
+    /// kSoftFocusShare)
+    std::int64_t softFocusRegions = 0;
     /// Newton iterations before the material's stiffness (0: none)
     std::int64_t softIterations = 0;
     /// iterations seeded with RelaxOptions::startTensions (0: none)
@@ -168,10 +172,10 @@ class FastRelaxer final : public Relaxer {
     /// The knots `region` of `system` (physics/fast/FocusRegion.h) relaxed on their own by
     /// focus_, the others held, to kFocusTolerance times `tolerance` (the stage's; a region's own
     /// regions to the region's tolerance), with the stage's compression stiffness max(k_c,
-    /// blend k_s); its steps counted from `stepsBefore`.
-    RelaxResult relaxRegion(MassSpringSystem& system, const RelaxOptions& options,
-                            TimePoint start, const std::vector<std::uint32_t>& region,
-                            double tolerance, double blend, std::int64_t stepsBefore);
+    /// blend k_s) and stiffness `scale`; its steps counted from `stepsBefore`.
+    RelaxResult relaxRegion(MassSpringSystem& system, const RelaxOptions& options, TimePoint start,
+                            const std::vector<std::uint32_t>& region, double tolerance,
+                            double blend, double scale, std::int64_t stepsBefore);
     /// A system of several independent parts (physics/fast/Components.h): each relaxed as a
     /// system of its own by a relaxer of its own (kept, so each part reuses its analysis), in
     /// turn or at the same time; the statistics summed in the order of the parts. Converged

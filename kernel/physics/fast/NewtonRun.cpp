@@ -527,12 +527,13 @@ bool NewtonRun::relaxRegion(double tolerance, bool mixed) {
     if (!regions_)
         return false;
     const std::vector<std::uint32_t> region =
-        focusRegion(field_, force_, analysis_.freeKnots, tolerance);
+        focusRegion(field_, force_, analysis_.freeKnots, tolerance,
+                    scale_ < 1.0 ? kSoftFocusShare : kFocusShare);
     if (region.empty())
         return false;
     std::copy(x_.begin(), x_.end(), system_.position.begin());
     // (Its force passes are over the region only: not counted as the whole system's.)
-    steps_ += regions_(region, tolerance, compressionBlend_, steps_).steps;
+    steps_ += regions_(region, tolerance, compressionBlend_, scale_, steps_).steps;
     for (std::uint32_t j : region)
         x_[j] = system_.position[j];
     residual_ = evaluate(x_);

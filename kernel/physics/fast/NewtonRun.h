@@ -230,12 +230,12 @@ struct Stage {
 class NewtonRun {
   public:
     /// Relaxes a region of the system's knots on its own (FocusRegion.h) from the positions in
-    /// the system, the others held, and leaves them there; `tolerance` and `blend` (compression
-    /// stiffness max(k_c, blend k_s)) are the stage's, and the region's steps are counted from
-    /// `stepsBefore`.
+    /// the system, the others held, and leaves them there; `tolerance`, `blend` (compression
+    /// stiffness max(k_c, blend k_s)) and `scale` (of both stiffnesses) are the stage's, and the
+    /// region's steps are counted from `stepsBefore`.
     using RegionRelax =
         std::function<RelaxResult(const std::vector<std::uint32_t>& region, double tolerance,
-                                  double blend, std::int64_t stepsBefore)>;
+                                  double blend, double scale, std::int64_t stepsBefore)>;
 
     /// `regions`: empty, every iteration is on the whole system.
     NewtonRun(MassSpringSystem& system, const RelaxOptions& options, NewtonAnalysis& analysis,
