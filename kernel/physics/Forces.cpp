@@ -386,7 +386,7 @@ void ForceField::evaluate(std::span<const Vec3> positions, std::span<Vec3> force
     assert(positions.size() == knotCount() && force.size() == knotCount());
     const std::size_t knots = knotCount();
     bool stream = !hasWind_;
-    if (stream && pool) {
+    if (stream && pool && pool->threadsNow() > 1) {
         // A thread walks the bars from the first to the last of its knots. Where knots far apart
         // in number share bars (pieces joined, numbered apart), the threads' walks overlap; past
         // a quarter more bars than there are, the two-phase way (each bar once) is faster.

@@ -59,7 +59,8 @@ class ThreadPool {
     /// From now on each task runs on at most `cores`' share of threads (null: all of the pool's);
     /// the chunks stay the same.
     void share(const SharedCores* cores) { shared_ = cores; }
-    /// The threads the next task would run on, the caller included.
+    /// The threads the next task would run on, the caller included: what a kernel that chooses
+    /// its way by the thread count (sequential or by tasks) asks, rather than size().
     int threadsNow() const { return shared_ ? std::min(size(), shared_->threadsEach()) : size(); }
 
     /// Calls body(begin, end, chunk) for the chunks of [0, count): contiguous ranges, chunk in

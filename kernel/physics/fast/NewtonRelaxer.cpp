@@ -360,7 +360,7 @@ RelaxResult NewtonRun::finish(double tolerance) {
     // residual(system_, options_.wind), on the field: the material's law at scale 1.
     setCompression(0.0);
     setScale(1.0);
-    field_.evaluate(x_, force_, pool());
+    field_.evaluate(x_, force_, pool_.get());
     ++evaluations_;
     result.residual = field_.maxResidual(force_);
     result.converged = result.residual < tolerance;

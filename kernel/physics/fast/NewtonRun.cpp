@@ -55,7 +55,7 @@ NewtonRun::NewtonRun(MassSpringSystem& system, const RelaxOptions& options,
 /// Eq. 3 at `at` for the current scale into force_; returns the max residual over free knots
 /// (+inf if any is not finite).
 double NewtonRun::evaluate(const std::vector<Vec3>& at) {
-    field_.evaluate(at, force_, pool());
+    field_.evaluate(at, force_, pool_.get());
     ++evaluations_;
     double worst = 0;
     for (std::uint32_t j : analysis_.freeKnots) {
@@ -161,9 +161,9 @@ void NewtonRun::assemble(bool mixed, bool exact) {
 
 bool NewtonRun::factorize() {
     const auto t0 = Clock::now();
-    const bool ok = analysis_.cholesky.factorize(values_, shift_ * meanDiagonal_, pool(),
-                                                 single_ ? SupernodalCholesky::Precision::Single
-                                                         : SupernodalCholesky::Precision::Double);
+    const bool ok = analysis_.cholesky.factorize(
+        values_, shift_ * meanDiagonal_, pool_.get(),
+        single_ ? SupernodalCholesky::Precision::Single : SupernodalCholesky::Precision::Double);
     stats_.factorSeconds += secondsSince(t0);
     analysis_.factorStiffness = ok ? meanStiffness() : 0;
     analysis_.reusedIterations = 0;
@@ -190,7 +190,7 @@ void NewtonRun::solve() {
 /// out = (H + mu I)^-1 rhs_ at the free knots, with the current factor.
 void NewtonRun::solveInto(std::vector<Vec3>& out) {
     const auto t0 = Clock::now();
-    analysis_.cholesky.solve(rhs_, pool());
+    analysis_.cholesky.solve(rhs_, pool_.get());
     for (std::size_t f = 0; f < analysis_.freeKnots.size(); ++f)
         out[analysis_.freeKnots[f]] = Vec3{rhs_[3 * f], rhs_[3 * f + 1], rhs_[3 * f + 2]};
     stats_.solveSeconds += secondsSince(t0);

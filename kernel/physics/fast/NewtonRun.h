@@ -248,12 +248,9 @@ class NewtonRun {
     RelaxResult run();
 
   private:
-    /// The run's pool, or null while its share of the machine is one thread (the sequential
-    /// kernels then, with the same bits).
-    ThreadPool* pool() const { return pool_ && pool_->threadsNow() > 1 ? pool_.get() : nullptr; }
     template <typename Body> void forRange(std::size_t count, Body&& body) {
-        if (ThreadPool* threads = pool())
-            threads->parallelFor(count, body);
+        if (pool_)
+            pool_->parallelFor(count, body);
         else if (count > 0)
             body(std::size_t{0}, count, std::size_t{0});
     }

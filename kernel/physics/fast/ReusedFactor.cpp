@@ -90,7 +90,7 @@ bool NewtonRun::solveByPreviousFactor(double tolerance) {
 void NewtonRun::precondition(const std::vector<double>& in, std::vector<double>& out) {
     const auto t0 = Clock::now();
     std::copy(in.begin(), in.end(), rhs_.begin());
-    analysis_.cholesky.solve(rhs_, pool());
+    analysis_.cholesky.solve(rhs_, pool_.get());
     std::copy(rhs_.begin(), rhs_.begin() + static_cast<std::ptrdiff_t>(in.size()), out.begin());
     stats_.solveSeconds += secondsSince(t0);
 }

@@ -561,7 +561,7 @@ bool SupernodalCholesky::factorSupernode(std::size_t s, std::span<const double> 
 template <class T>
 void SupernodalCholesky::runSchedule(std::span<const double> values, double shift,
                                      ThreadPool* pool) {
-    const std::size_t threads = pool ? static_cast<std::size_t>(pool->size()) : 1;
+    const std::size_t threads = pool ? static_cast<std::size_t>(pool->threadsNow()) : 1;
     if (workers_.size() != threads) {
         workers_.assign(threads, Worker{});
         for (Worker& w : workers_)

@@ -38,7 +38,7 @@ template <class T> void SupernodalCholesky::solveIn(std::span<double> b, ThreadP
     Vector<T> y(static_cast<Eigen::Index>(dimension_));
     for (std::size_t k = 0; k < dimension_; ++k)
         y[static_cast<Eigen::Index>(k)] = static_cast<T>(b[static_cast<std::size_t>(perm_[k])]);
-    if (pool && pool->size() > 1 && taskStart_.size() > 2) {
+    if (pool && pool->threadsNow() > 1 && taskStart_.size() > 2) {
         solveParallel<T>(y.data(), *pool);
     } else {
         const std::size_t supers = superStart_.size() - 1;
@@ -117,7 +117,7 @@ template <class T>
 void SupernodalCholesky::solveParallel(T* y, ThreadPool& pool) const {
     const std::size_t supers = superStart_.size() - 1;
     const std::size_t tasks = taskStart_.size() - 1;
-    const auto threads = static_cast<std::size_t>(pool.size());
+    const auto threads = static_cast<std::size_t>(pool.threadsNow());
     std::vector<T>& products = belowProducts<T>();
     if (products.size() != static_cast<std::size_t>(belowStart_[supers]))
         products.resize(static_cast<std::size_t>(belowStart_[supers]));

@@ -78,7 +78,7 @@ void NewtonRun::applyWindOperator(const std::vector<double>& v, std::vector<doub
         rhs_[3 * f + 2] = g.z;
     }
     const auto t0 = Clock::now();
-    analysis_.cholesky.solve(rhs_, pool());
+    analysis_.cholesky.solve(rhs_, pool_.get());
     stats_.solveSeconds += secondsSince(t0);
     out.resize(v.size());
     for (std::size_t i = 0; i < v.size(); ++i)
