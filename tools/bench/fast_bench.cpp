@@ -169,9 +169,10 @@ void runSystem(const std::string& name, MassSpringSystem start, double targetSec
                     static_cast<long long>(stats.partsTogether));
     if (stats.focusRegions > 0)
         std::printf("      %lld regions still out of balance relaxed on their own (%lld in the "
-                    "softer stages)\n",
+                    "softer stages, %lld where the last stage stalled)\n",
                     static_cast<long long>(stats.focusRegions),
-                    static_cast<long long>(stats.softFocusRegions));
+                    static_cast<long long>(stats.softFocusRegions),
+                    static_cast<long long>(stats.stallFocusRegions));
     // With parts at the same time the times are summed over them (thread time, not wall time).
     const bool together = stats.partsTogether > 1;
     std::printf("      analysis %.3f s (%s ordering), factorizations %.3f s (%.3g flops each, "

@@ -34,6 +34,7 @@ void addPart(NewtonStatistics& whole, const NewtonStatistics& part) {
     whole.singleFactorizations += part.singleFactorizations;
     whole.focusRegions += part.focusRegions;
     whole.softFocusRegions += part.softFocusRegions;
+    whole.stallFocusRegions += part.stallFocusRegions;
     whole.softScale = std::min(whole.softScale, part.softScale);
     whole.reusedAnalysis = whole.reusedAnalysis && part.reusedAnalysis;
     whole.analysisSeconds += part.analysisSeconds;

@@ -22,7 +22,12 @@ namespace netsculpt::newton {
 constexpr std::size_t kFocusMinKnots = 1000;
 /// In any stage, once it has taken this many iterations since its start or its last region: one
 /// that converges quadratically takes fewer, and a region would cost it its boundary's iterations
-/// for nothing.
+/// for nothing. At once, though, in the material's last stage when its mixed iterations stall
+/// (NewtonRun.h, kMixedPatience): their full steps then leave the residual where it was, a few
+/// hundred knots of a slack piece's collapsed edges out of balance (the installation's banner at
+/// 6.3e-4 of a knot's weight for five iterations after its last stage's first three), and the
+/// energy steps after them creep with the whole net factorized each time
+/// (NewtonStatistics::stallFocusRegions).
 constexpr int kFocusAfter = 20;
 /// The region: the knots out of balance and this many rings of their neighbours ...
 constexpr int kFocusRings = 6;

@@ -231,6 +231,13 @@ void NewtonRun::runStage(const Stage& stage, bool lastStage, bool slack) {
                 sinceBest = 0;
             } else if (++sinceBest >= kMixedPatience) {
                 mixed = false; // stalled: the energy line search always makes progress
+                if (lastStage && relaxRegion(stage.tolerance, mixed)) { // FocusRegion.h
+                    ++stats_.stallFocusRegions;
+                    sinceRegion = steps_;
+                    keepIfBest();
+                    best = residual_;
+                    sinceBest = 0;
+                }
             }
         }
     }

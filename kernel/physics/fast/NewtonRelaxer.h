@@ -116,6 +116,8 @@ struct NewtonStatistics {
     /// of them, regions taken in a stage softer than the material's (FocusRegion.h,
     /// kSoftFocusShare)
     std::int64_t softFocusRegions = 0;
+    /// of them, regions taken at once when the material's last stage stalled (FocusRegion.h)
+    std::int64_t stallFocusRegions = 0;
     /// Newton iterations before the material's stiffness (0: none)
     std::int64_t softIterations = 0;
     /// iterations seeded with RelaxOptions::startTensions (0: none)
