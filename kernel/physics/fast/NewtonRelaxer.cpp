@@ -156,6 +156,15 @@ void NewtonRun::runStage(const Stage& stage, bool lastStage, bool slack) {
         sinceRegion = steps_;
         keepIfBest();
     }
+    // After a region in the loop: the next one waits kFocusAfter iterations, and the stall test
+    // starts again from where the region left the whole.
+    const auto afterRegion = [&] {
+        sinceRegion = steps_;
+        if (lastStage)
+            keepIfBest();
+        best = residual_;
+        sinceBest = 0;
+    };
 
     while (!(residual_ < stage.tolerance)) {
         if (stopRequested())
@@ -208,11 +217,7 @@ void NewtonRun::runStage(const Stage& stage, bool lastStage, bool slack) {
         }
         if (steps_ - sinceRegion >= kFocusAfter && !(residual_ < stage.tolerance) &&
             relaxRegion(stage.tolerance, mixed)) {
-            sinceRegion = steps_;
-            if (lastStage)
-                keepIfBest();
-            best = residual_;
-            sinceBest = 0;
+            afterRegion();
             continue;
         }
         // A full step lowers the shift when its model was good: mixed (no energy measured), or
@@ -233,10 +238,7 @@ void NewtonRun::runStage(const Stage& stage, bool lastStage, bool slack) {
                 mixed = false; // stalled: the energy line search always makes progress
                 if (lastStage && relaxRegion(stage.tolerance, mixed)) { // FocusRegion.h
                     ++stats_.stallFocusRegions;
-                    sinceRegion = steps_;
-                    keepIfBest();
-                    best = residual_;
-                    sinceBest = 0;
+                    afterRegion();
                 }
             }
         }
