@@ -74,6 +74,10 @@ int threadsBesideTheFrames() {
     return static_cast<int>(std::max(2u, std::thread::hardware_concurrency()) - 1);
 }
 
+int threadsForSettling() {
+    return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
 LiveRelaxer::LiveRelaxer(LiveRelaxOptions options) : options_(std::move(options)), worker_([this] { workerLoop(); }) {}
 
 LiveRelaxer::~LiveRelaxer() {
@@ -358,11 +362,11 @@ void LiveRelaxer::finish(JobRun& run, const std::string& reason, std::vector<Vec
     publish(run.state);
 }
 
-RelaxOptions LiveRelaxer::jobOptions() {
+RelaxOptions LiveRelaxer::jobOptions(bool settling) {
     RelaxOptions o;
     o.cancel = &cancel_;
     o.cancelNow = &cancelNow_;
-    o.threads = options_.threads;
+    o.threads = settling && options_.settleThreads > 0 ? options_.settleThreads : options_.threads;
     o.maxSeconds = options_.maxSeconds;
     return o;
 }
@@ -415,9 +419,10 @@ void LiveRelaxer::runPreview(JobRun& run) {
         shown.positions = start.shown.empty() ? soft.position : start.shown;
         publishOnTheWay(std::move(shown));
     }
-    RelaxOptions o = jobOptions();
     if (start.before)
         start.hint = startTensions(start.repeated ? soft : *start.before, soft);
+    // Without a hint the run is a cold one (a new or opened sculpture): no drag waits on it.
+    RelaxOptions o = jobOptions(start.hint.empty());
     o.startTensions = start.hint;
     o.tolerance = options_.previewTolerance;
     o.continuation = relaxer_->name() == "fast";
@@ -525,7 +530,7 @@ void LiveRelaxer::rememberStep(bool nearEquilibrium, PreviewStart& start,
 // without positions (the shape shown stays until the end).
 void LiveRelaxer::runRefine(JobRun& run) {
     shownOnTheWay_.clear(); // the document takes the refine's shape, or the preview's end
-    RelaxOptions o = jobOptions();
+    RelaxOptions o = jobOptions(true);
     o.tolerance = options_.refineTolerance;
     o.continuation = true;
     o.progressInterval = 3 * options_.publishInterval;

@@ -61,6 +61,9 @@ struct LiveRelaxOptions {
     double publishInterval = 1.0 / 30; ///< s, at least, between two published preview shapes
     std::string backend = "auto";     ///< see makeRelaxer
     int threads = 0;                  ///< RelaxOptions::threads
+    /// RelaxOptions::threads for the runs no drag waits on: a preview from a cold start (a new or
+    /// opened sculpture: no hint from a shape before it) and a refine. 0: `threads`.
+    int settleThreads = 0;
     /// RelaxOptions::singlePrecisionSteps for the preview's hinted runs (after an edit)
     bool singlePrecisionSteps = true;
     /// Called on the worker thread right after each publication, with the state published (to
@@ -71,6 +74,10 @@ struct LiveRelaxOptions {
 /// The threads the studio gives its live preview: every hardware thread but one, kept for drawing
 /// frames (with a software renderer the frames need a core of their own), and at least one.
 int threadsBesideTheFrames();
+/// The threads the studio gives the runs no drag waits on (LiveRelaxOptions::settleThreads): every
+/// hardware thread. The relaxation runs below the frames' priority (LiveRelaxer::setNiceness), so
+/// the frames still get the CPU first.
+int threadsForSettling();
 
 enum class LivePhase { Idle, Preview, Refine };
 
@@ -138,8 +145,9 @@ class LiveRelaxer {
     void runJob(Job& job);
     void runPreview(JobRun& run);
     void runRefine(JobRun& run);
-    /// The options every run shares: the cancel flags, threads and time limit.
-    RelaxOptions jobOptions();
+    /// The options every run shares: the cancel flags, threads (settleThreads when `settling`)
+    /// and time limit.
+    RelaxOptions jobOptions(bool settling);
     /// Publishes run's state, ended with `reason` at `positions`.
     void finish(JobRun& run, const std::string& reason, std::vector<Vec3> positions);
     void publish(LiveState state);

@@ -11,6 +11,7 @@
 #include "physics/fast/NewtonRelaxer.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -842,6 +843,45 @@ TEST_CASE("live relaxer: setNiceness lowers the worker's priority from the next 
     REQUIRE(live.waitIdle(60));
     CHECK(lowered() == 1); // the worker, not the caller
     CHECK(getpriority(PRIO_PROCESS, 0) == base);
+}
+
+TEST_CASE("live relaxer: cold previews and refines run on settleThreads and drag steps on threads",
+          "[live]") {
+    Scene scene;
+    scene.doc.execute(SetRowsCommand{scene.net, 20});
+    const auto taskCount = [] {
+        const auto tasks = std::filesystem::directory_iterator("/proc/self/task");
+        return static_cast<int>(std::distance(begin(tasks), end(tasks)));
+    };
+    std::atomic<int> most{0}; // threads of the process at the run's publications, at most
+    LiveRelaxOptions options;
+    options.backend = "fast";
+    options.threads = 1;
+    options.settleThreads = 3; // a pool of three: its two threads besides the worker
+    options.publishInterval = 0;
+    options.onPublish = [&](const LiveState&) {
+        const int now = taskCount();
+        for (int seen = most.load(); now > seen && !most.compare_exchange_weak(seen, now);) {
+        }
+    };
+    LiveRelaxer live(options);
+    const int idle = taskCount(); // the caller, the worker and whatever else the process runs
+    const auto extraThreads = [&] {
+        const int seen = most.exchange(0);
+        return seen - idle;
+    };
+
+    previewAndShow(scene.doc, live, 1); // cold: no shape before it
+    CHECK(extraThreads() == 2);
+    scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt, 0.35 * 1.005},
+                      true);
+    const auto step = previewAndShow(scene.doc, live, 2); // hinted by the shape before the edit
+    CHECK(step->converged);
+    CHECK(extraThreads() == 0);
+    live.refine(scene.doc.compiled().system, 3);
+    REQUIRE(live.waitIdle(120));
+    CHECK(live.latest()->converged);
+    CHECK(extraThreads() == 2);
 }
 #endif
 

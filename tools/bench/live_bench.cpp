@@ -20,6 +20,8 @@
 //   --preview-scale S                    the preview's stiffness scale (default: the studio's)
 //   --threads N                          the preview's threads (default: the studio's, every
 //                                        hardware thread but the one it keeps for its frames)
+//   --settle-threads N                   the threads of a cold preview (the first settle) and of
+//                                        a refine (default: the studio's, every hardware thread)
 //   --double-steps                       the hinted steps in double precision throughout (the
 //                                        studio's are single, refined in double)
 //   --only bar|rows                      one of the two drags (for profiling)
@@ -354,6 +356,7 @@ int main(int argc, char** argv) {
     double refineGap = -1;
     LiveRelaxOptions options; // the studio's
     options.threads = threadsBesideTheFrames();
+    options.settleThreads = threadsForSettling();
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         if (arg == "--knots" && i + 1 < argc)
@@ -362,6 +365,8 @@ int main(int argc, char** argv) {
             steps = std::atoi(argv[++i]);
         else if (arg == "--threads" && i + 1 < argc)
             options.threads = std::atoi(argv[++i]);
+        else if (arg == "--settle-threads" && i + 1 < argc)
+            options.settleThreads = std::atoi(argv[++i]);
         else if (arg == "--sheet")
             sheet = true;
         else if (arg == "--connect")
@@ -382,17 +387,19 @@ int main(int argc, char** argv) {
                                                      std::string(argv[i + 1]) == "rows"))
             only = argv[++i];
         else {
-            std::fprintf(stderr, "usage: %s [--knots N] [--steps N] [--backend NAME] "
-                                 "[--preview-scale S] [--threads N] [--sheet] [--double-steps] "
-                                 "[--only bar|rows] [--connect] [--continuous] [--on-screen] "
-                                 "[--refine-gap S]\n",
+            std::fprintf(stderr,
+                         "usage: %s [--knots N] [--steps N] [--backend NAME] "
+                         "[--preview-scale S] [--threads N] [--settle-threads N] "
+                         "[--sheet] [--double-steps] "
+                         "[--only bar|rows] [--connect] [--continuous] [--on-screen] "
+                         "[--refine-gap S]\n",
                          argv[0]);
             return 2;
         }
     }
-    if (knots < 100 || steps < 1 || options.threads < 1) {
-        std::fprintf(stderr, "netsculpt-bench-live: --knots must be >= 100, --steps and "
-                             "--threads >= 1\n");
+    if (knots < 100 || steps < 1 || options.threads < 1 || options.settleThreads < 1) {
+        std::fprintf(stderr, "netsculpt-bench-live: --knots must be >= 100, --steps, --threads "
+                             "and --settle-threads >= 1\n");
         return 2;
     }
     try {
@@ -408,14 +415,12 @@ int main(int argc, char** argv) {
                             : sheet ? "a slack sheet between two rails"
                                     : "the studio's demo tube";
         std::printf("netsculpt-bench-live: %s, %zu knots, %zu bars, %d x %d; "
-                    "preview backend %s, stiffness x%.3g, tolerance %.0e, %d thread(s), hinted "
-                    "steps in %s precision; built for %s\n",
-                    scene,
-                    system.knotCount(), system.barCount(), start.rows, start.columns,
+                    "preview backend %s, stiffness x%.3g, tolerance %.0e, %d thread(s) (%d for a "
+                    "cold preview or a refine), hinted steps in %s precision; built for %s\n",
+                    scene, system.knotCount(), system.barCount(), start.rows, start.columns,
                     options.backend.c_str(), previewScale(system, options.previewStiffnessScale),
-                    options.previewTolerance, options.threads,
-                    options.singlePrecisionSteps ? "single" : "double",
-                    bench::instructionSet());
+                    options.previewTolerance, options.threads, options.settleThreads,
+                    options.singlePrecisionSteps ? "single" : "double", bench::instructionSet());
         PublicationLog log(onScreen);
         options.onPublish = [&log](const LiveState& state) { log.record(state); };
         LiveRelaxer live(options);

@@ -114,6 +114,7 @@ App::App(StudioOptions options) : options_(std::move(options)) {
     interaction_ = std::make_unique<Interaction>(*doc_, camera_);
     LiveRelaxOptions live;
     live.threads = threadsBesideTheFrames();
+    live.settleThreads = threadsForSettling();
     live_ = std::make_unique<LiveRelaxer>(live);
 }
 
