@@ -10,6 +10,7 @@
 #include "physics/Forces.h"
 #include "physics/ReferenceNets.h"
 #include "physics/Relaxer.h"
+#include "physics/WarmStart.h"
 #include "physics/fast/NewtonRelaxer.h"
 #include "physics/fast/NewtonRun.h"
 
@@ -263,6 +264,53 @@ TEST_CASE("fast: warm start after an edit takes fewer iterations than from scrat
     INFO("grown: warm " << grown.steps << ", from scratch " << longerFromScratch.steps);
     CHECK(grown.steps <= 2 * longerFromScratch.steps);
     CHECK(maxDistance(longer.system.position, longerScratch.position) < 1e-6);
+}
+
+TEST_CASE("fast: an edit its hint does not fit goes through the stages from one stiffer than a "
+          "cold start",
+          "[fast]") {
+    // Rows added to a sheet tied to a rail below: the rows it kept hang where they hung, the new
+    // ones are spread towards the rail (carryPositions), and the tensions before the edit do not
+    // fit. A soft stage would let the whole sheet sag a hundredfold further than it hangs.
+    Sculpture s = slackSheet(30, 40, 2e5);
+    const PieceId piece = s.pieces.begin()->first;
+    CompiledSculpture before = compileSculpture(s);
+    FastRelaxer relaxer;
+    REQUIRE(relaxer.relax(before.system, RelaxOptions{}).converged);
+    auto [ignored, after] = applyAtomically(s, [&](Sculpture& m) {
+        setRows(m, piece, 32);
+        return 0;
+    });
+    MassSpringSystem cold = after.system; // its Eq. 2 geometry
+    REQUIRE(relaxer.relax(cold, RelaxOptions{}).converged);
+    const double coldSoftScale = relaxer.statistics().softScale;
+    REQUIRE(coldSoftScale < 1.0 / newton::kStageFactor);
+    REQUIRE(carryPositions(before, after) > 0);
+    RelaxOptions options;
+    options.startTensions = startTensions(before.system, after.system);
+    REQUIRE_FALSE(options.startTensions.empty());
+    const RelaxResult edited = relaxer.relax(after.system, options);
+    INFO(edited.steps << " iterations, soft scale " << relaxer.statistics().softScale << ", cold "
+                      << coldSoftScale);
+    CHECK(edited.converged);
+    CHECK(residual(after.system) < 1e-6);
+    CHECK(relaxer.statistics().hintIterations > 0);
+    CHECK(relaxer.statistics().softScale == Approx(coldSoftScale * newton::kStageFactor));
+
+    // The same edit with one new knot a metre below where it was spread: its bars are stretched
+    // ninefold (more than kEditStageMaxStrain), and the run takes the cold start's soft stage.
+    auto [ignored2, flung] = applyAtomically(s, [&](Sculpture& m) {
+        setRows(m, piece, 32);
+        return 0;
+    });
+    REQUIRE(carryPositions(before, flung) > 0);
+    const std::uint32_t knot = flung.knotOf(piece, 30, 20);
+    REQUIRE_FALSE(flung.system.fixed[knot]);
+    flung.system.position[knot].z -= 1.0;
+    options.startTensions = startTensions(before.system, flung.system);
+    CHECK(relaxer.relax(flung.system, options).converged);
+    CHECK(residual(flung.system) < 1e-6);
+    CHECK(relaxer.statistics().softScale == Approx(coldSoftScale));
 }
 
 namespace {

@@ -32,9 +32,14 @@ RelaxResult NewtonRun::run() {
     bool warm = false;
     const double ratio = axialToLoad();
     if (!analysis_.freeKnots.empty() && !(residual_ < tolerance)) {
-        warm = isWarm(stats_.hintIterations > 0);
-        if (options_.continuation && !warm)
+        const bool hinted = stats_.hintIterations > 0;
+        const StartStrain strain = startStrain();
+        warm = isWarm(strain, hinted && hintKeptAt_ >= 0);
+        if (options_.continuation && !warm) {
             softScale = softStageScale(ratio);
+            if (hinted && strain.largest <= kEditStageMaxStrain) // an edited relaxed shape
+                softScale = std::min(1.0, softScale * kStageFactor);
+        }
     }
     stats_.softScale = softScale;
     const std::vector<Stage> stages = planStages(softScale, warm, ratio);
@@ -74,21 +79,27 @@ RelaxResult NewtonRun::run() {
     return finish(tolerance);
 }
 
-/// Whether the start is warm: at least kWarmTautShare of the bars stretched by more than
-/// kTautStrain, none by more than kWarmMaxStrain, and, unless the start was hinted, the residual
-/// at most kWarmMaxResidual.
-bool NewtonRun::isWarm(bool hinted) const {
+/// The share of the bars stretched by more than kTautStrain at x_, and the largest strain.
+StartStrain NewtonRun::startStrain() const {
     const std::size_t bars = system_.barCount();
     std::size_t taut = 0;
-    double maxStrain = 0;
+    StartStrain strain;
     for (std::size_t b = 0; b < bars; ++b) {
-        const double strain =
+        const double e =
             distance(x_[system_.barA[b]], x_[system_.barB[b]]) / system_.restLength[b] - 1;
-        taut += strain > kTautStrain ? 1 : 0;
-        maxStrain = std::max(maxStrain, strain);
+        taut += e > kTautStrain ? 1 : 0;
+        strain.largest = std::max(strain.largest, e);
     }
-    return static_cast<double>(taut) >= kWarmTautShare * static_cast<double>(bars) &&
-           maxStrain <= kWarmMaxStrain && (hinted || residual_ <= kWarmMaxResidual);
+    strain.tautShare = bars > 0 ? static_cast<double>(taut) / static_cast<double>(bars) : 1.0;
+    return strain;
+}
+
+/// Whether the start is warm: at least kWarmTautShare of the bars stretched by more than
+/// kTautStrain, none by more than kWarmMaxStrain, and, unless the start is the state of hinted
+/// iterations that was kept (`hinted`), the residual at most kWarmMaxResidual.
+bool NewtonRun::isWarm(const StartStrain& strain, bool hinted) const {
+    return strain.tautShare >= kWarmTautShare && strain.largest <= kWarmMaxStrain &&
+           (hinted || residual_ <= kWarmMaxResidual);
 }
 
 /// The softest bar's EA over the mean load per held knot, at scale 1.

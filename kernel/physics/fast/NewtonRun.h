@@ -72,11 +72,25 @@ constexpr double kTautStrain = 1e-9;
 constexpr double kWarmMaxStrain = 0.05;
 // ... and the start's residual is below this: the forces are out of balance by at most a
 // hundred times the knots' weights (rows added below a relaxed net are not; their weight, not
-// yet carried, is a cold start in disguise). Not after a hinted start: the hint says the shape
-// is an edited equilibrium, whose load the bars away from the edit still carry, and a soft stage
-// would throw that equilibrium away everywhere (an edit of the installation's core that
-// slackens its bell: 70 iterations, 6 s, warm; not converged in 120 s through the stages).
+// yet carried, is a cold start in disguise). Not after hinted iterations whose state was kept:
+// the hint says the shape is an edited equilibrium, whose load the bars away from the edit still
+// carry, and a soft stage would throw that equilibrium away everywhere (an edit of the
+// installation's core that slackens its bell: 70 iterations, 6 s, warm; not converged in 120 s
+// through the stages). When their state was not kept the hint did not fit the edit, and the
+// edited start is judged as any other (the bell's two more rows: its hinted iterations end at
+// 4.1e4 knot weights; warm at the material's stiffness 201 steps, through stages 135).
 constexpr double kWarmMaxResidual = 100;
+// A hinted start that is not warm (an edit the hinted iterations did not fit, or whose hinted
+// state was not kept) is a relaxed shape edited: most of its bars still carry their load. Its
+// continuation starts one kStageFactor stiffer than a cold start's soft stage, which would let
+// the whole part sag a hundredfold further than it hangs and pull it back up (edits of the
+// installation's core, bell and tail, docs/performance.md, thirty-third session: 1,068 steps
+// to 93 for four rows of the tail, 201 to 135 for two of the bell) ... unless a bar of the start
+// is stretched by more than kEditStageMaxStrain: rows moved far from the piece they hang from
+// need the soft stage (sixty rows added to the README's example between its tube and its skirt
+// stretch the skirt's top bars 68-fold: not converged in 2,000 steps from the stiffer stage,
+// 1,406 from the soft one).
+constexpr double kEditStageMaxStrain = 2;
 // A start with a tension hint (RelaxOptions::startTensions) first gets at most this many mixed
 // Newton iterations seeded with the hint (see NewtonRun::hintedStart); a small edit needs two or
 // three, and a start the hint does not fit goes on to the usual decision after them.
@@ -226,6 +240,13 @@ struct Stage {
     bool thirdOrder; ///< ... to the third order (kThirdOrderAxialToLoad)
 };
 
+/// How a run's start is stretched: the share of its bars stretched by more than kTautStrain,
+/// and the largest strain.
+struct StartStrain {
+    double tautShare = 0;
+    double largest = 0;
+};
+
 /// One relaxation: the Newton iteration and its bookkeeping.
 class NewtonRun {
   public:
@@ -321,7 +342,8 @@ class NewtonRun {
     void setHintedLaw();
     double materialLawResidual();
     bool hintStopRequested(bool moved, double startResidual);
-    bool isWarm(bool hinted) const;
+    StartStrain startStrain() const;
+    bool isWarm(const StartStrain& strain, bool hinted) const;
     double axialToLoad() const;
     double softStageScale(double axialToLoad) const;
     std::vector<Stage> planStages(double softScale, bool warm, double axialToLoad) const;
