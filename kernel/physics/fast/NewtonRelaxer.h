@@ -46,8 +46,10 @@
 //   before an edit) first takes up to six mixed iterations seeded with it, in which a bar the
 //   hint has taut keeps k_s when slack: the first is the edit's tangent predictor, and after a
 //   small edit (a drag step) two or three reach the tolerance. Otherwise the run goes on as above,
-//   warm whatever its residual when the bars carry their load (an edited equilibrium: a soft
-//   stage would throw away the equilibrium of every part the edit did not touch).
+//   warm whatever its residual when the bars carry their load and the hinted state was kept (an
+//   edited equilibrium: a soft stage would throw away the equilibrium of every part the edit did
+//   not touch); when it is not warm, its stages start one kStageFactor stiffer than a cold start's
+//   soft stage unless a bar is stretched more than kEditStageMaxStrain (NewtonRun.h).
 // - Slack nets (bars in compression at the first soft stage's equilibrium): the energy stages
 //   after the first add a second, trust-region-driven Levenberg shift scaled by the knots'
 //   weights per bar length (the soft modes of slack parts otherwise make the line search cut
