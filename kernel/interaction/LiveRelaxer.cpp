@@ -91,16 +91,15 @@ LiveRelaxer::~LiveRelaxer() {
     worker_.join();
 }
 
-void LiveRelaxer::preview(const MassSpringSystem& system, std::uint64_t generation) {
-    start(system, generation, LivePhase::Preview);
+void LiveRelaxer::preview(const MassSpringSystem& system, std::uint64_t generation, bool dragging) {
+    start(Job{system, generation, LivePhase::Preview, dragging}); // copied outside the lock
 }
 
 void LiveRelaxer::refine(const MassSpringSystem& system, std::uint64_t generation) {
-    start(system, generation, LivePhase::Refine);
+    start(Job{system, generation, LivePhase::Refine, false});
 }
 
-void LiveRelaxer::start(const MassSpringSystem& system, std::uint64_t generation, LivePhase phase) {
-    Job job{system, generation, phase}; // the copy is made outside the lock
+void LiveRelaxer::start(Job job) {
     {
         std::lock_guard lock(mutex_);
         pending_ = std::move(job);
@@ -421,8 +420,9 @@ void LiveRelaxer::runPreview(JobRun& run) {
     }
     if (start.before)
         start.hint = startTensions(start.repeated ? soft : *start.before, soft);
-    // Without a hint the run is a cold one (a new or opened sculpture): no drag waits on it.
-    RelaxOptions o = jobOptions(start.hint.empty());
+    // A drag's next step waits on a run of a drag step with a hint; a cold run (a new or opened
+    // sculpture) or an edit made with no handle held has no next step coming.
+    RelaxOptions o = jobOptions(!run.job.dragging || start.hint.empty());
     o.startTensions = start.hint;
     o.tolerance = options_.previewTolerance;
     o.continuation = relaxer_->name() == "fast";

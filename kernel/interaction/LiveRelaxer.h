@@ -61,8 +61,10 @@ struct LiveRelaxOptions {
     double publishInterval = 1.0 / 30; ///< s, at least, between two published preview shapes
     std::string backend = "auto";     ///< see makeRelaxer
     int threads = 0;                  ///< RelaxOptions::threads
-    /// RelaxOptions::threads for the runs no drag waits on: a preview from a cold start (a new or
-    /// opened sculpture: no hint from a shape before it) and a refine. 0: `threads`.
+    /// RelaxOptions::threads for the runs no drag waits on: a preview of an edit made with no
+    /// handle held (preview()'s `dragging`: typed, a button, an undo), a preview from a cold
+    /// start (a new or opened sculpture: no hint from a shape before it), and a refine. 0:
+    /// `threads`.
     int settleThreads = 0;
     /// RelaxOptions::singlePrecisionSteps for the preview's hinted runs (after an edit)
     bool singlePrecisionSteps = true;
@@ -110,7 +112,9 @@ class LiveRelaxer {
     LiveRelaxer& operator=(const LiveRelaxer&) = delete;
 
     /// Restarts the soft preview from `system`'s positions (copied). Returns at once.
-    void preview(const MassSpringSystem& system, std::uint64_t generation);
+    /// `dragging`: the edit is a step of a drag, whose next step comes within frames (the run
+    /// takes `threads`, else `settleThreads`).
+    void preview(const MassSpringSystem& system, std::uint64_t generation, bool dragging = false);
     /// Relaxes at the material's stiffness from `system`'s positions (copied). Returns at once.
     void refine(const MassSpringSystem& system, std::uint64_t generation);
     /// Cancels the run in progress (the last published state stays).
@@ -131,8 +135,9 @@ class LiveRelaxer {
         MassSpringSystem system;
         std::uint64_t generation = 0;
         LivePhase phase = LivePhase::Preview;
+        bool dragging = false; ///< preview(): a step of a drag
     };
-    void start(const MassSpringSystem& system, std::uint64_t generation, LivePhase phase);
+    void start(Job job);
     void workerLoop();
     void applyNiceness();
     /// One job on the worker: what it publishes, and since when it runs.

@@ -116,8 +116,9 @@ namespace {
 
 /// Previews the document's system, waits for the end of the run and shows its shape (the next
 /// edit warm-starts from it), as the studio does.
-std::shared_ptr<const LiveState> previewAndShow(Document& doc, LiveRelaxer& live, std::uint64_t generation) {
-    live.preview(doc.compiled().system, generation);
+std::shared_ptr<const LiveState> previewAndShow(Document& doc, LiveRelaxer& live,
+                                                std::uint64_t generation, bool dragging = false) {
+    live.preview(doc.compiled().system, generation, dragging);
     REQUIRE(live.waitIdle(60));
     auto state = live.latest();
     REQUIRE(state);
@@ -845,8 +846,9 @@ TEST_CASE("live relaxer: setNiceness lowers the worker's priority from the next 
     CHECK(getpriority(PRIO_PROCESS, 0) == base);
 }
 
-TEST_CASE("live relaxer: cold previews and refines run on settleThreads and drag steps on threads",
+TEST_CASE("live relaxer: drag steps take threads and every other run takes settleThreads",
           "[live]") {
+    // Every other run: a cold preview, a preview of an edit made with no handle held, a refine.
     Scene scene;
     scene.doc.execute(SetRowsCommand{scene.net, 20});
     const auto taskCount = [] {
@@ -875,10 +877,16 @@ TEST_CASE("live relaxer: cold previews and refines run on settleThreads and drag
     CHECK(extraThreads() == 2);
     scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt, 0.35 * 1.005},
                       true);
-    const auto step = previewAndShow(scene.doc, live, 2); // hinted by the shape before the edit
+    // A drag's step, hinted by the shape before the edit.
+    const auto step = previewAndShow(scene.doc, live, 2, /*dragging=*/true);
     CHECK(step->converged);
     CHECK(extraThreads() == 0);
-    live.refine(scene.doc.compiled().system, 3);
+    // The same edit typed (no handle held).
+    scene.doc.execute(SetBarLengthCommand{scene.net, std::nullopt, std::nullopt, 0.35 * 1.01},
+                      true);
+    CHECK(previewAndShow(scene.doc, live, 3)->converged);
+    CHECK(extraThreads() == 2);
+    live.refine(scene.doc.compiled().system, 4);
     REQUIRE(live.waitIdle(120));
     CHECK(live.latest()->converged);
     CHECK(extraThreads() == 2);

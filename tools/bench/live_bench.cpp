@@ -186,12 +186,13 @@ struct StepTiming {
     std::int64_t steps = 0;    ///< the backend's steps (Newton iterations for the fast one)
 };
 
-/// Relaxes the document's current system as the studio does after an edit; shows the result
-/// (copies the positions back, so the next edit warm-starts from them).
-StepTiming previewNow(Document& doc, LiveRelaxer& live, std::uint64_t generation) {
+/// Relaxes the document's current system as the studio does after an edit (`dragging`: a step
+/// of a drag, the handle held); shows the result (copies the positions back, so the next edit
+/// warm-starts from them).
+StepTiming previewNow(Document& doc, LiveRelaxer& live, std::uint64_t generation, bool dragging) {
     StepTiming timing;
     const auto t0 = Clock::now();
-    live.preview(doc.compiled().system, generation);
+    live.preview(doc.compiled().system, generation, dragging);
     const auto state = awaitRun(live, generation);
     timing.relaxSeconds = secondsSince(t0);
     timing.converged = state->converged;
@@ -249,7 +250,7 @@ void runDrag(const char* name, Document& doc, LiveRelaxer& live, PublicationLog&
         // shape before it, new rows where the document places them).
         const std::vector<Vec3> atEdit =
             log.keepsShapes() ? doc.compiled().system.position : std::vector<Vec3>{};
-        const StepTiming timing = previewNow(doc, live, ++generation);
+        const StepTiming timing = previewNow(doc, live, ++generation, true);
         if (refineGap >= 0) { // the studio's refine after a settled preview, cut short by the drag
             live.refine(doc.compiled().system, ++generation);
             std::this_thread::sleep_for(std::chrono::duration<double>(refineGap));
@@ -314,7 +315,7 @@ void runContinuousDrag(Document& doc, LiveRelaxer& live, std::uint64_t& generati
         }
         if (frame < steps) {
             doc.execute(commandAt(frame + 1), /*merge=*/true);
-            live.preview(doc.compiled().system, ++generation);
+            live.preview(doc.compiled().system, ++generation, true);
             lastEdit = secondsSince(t0);
             frames = frame + 1;
         }
@@ -337,7 +338,7 @@ void runConnect(Document& doc, LiveRelaxer& live, PublicationLog& log,
     const auto t0 = Clock::now();
     doc.execute(ConnectToRailCommand{piece, bottom, 0.0, false});
     const double editSeconds = secondsSince(t0);
-    const StepTiming timing = previewNow(doc, live, ++generation);
+    const StepTiming timing = previewNow(doc, live, ++generation, false); // on the release
     std::printf("connect     edit %.1f ms  re-relax %.2f s (%s, %lld steps)\n", 1e3 * editSeconds,
                 timing.relaxSeconds, timing.converged ? "converged" : "not converged",
                 static_cast<long long>(timing.steps));
@@ -425,7 +426,7 @@ int main(int argc, char** argv) {
         options.onPublish = [&log](const LiveState& state) { log.record(state); };
         LiveRelaxer live(options);
         std::uint64_t generation = 1;
-        const StepTiming settle = previewNow(doc, live, generation);
+        const StepTiming settle = previewNow(doc, live, generation, false);
         std::printf("first settle from the Eq. 2 start: %.2f s (%s, %lld steps)\n",
                     settle.relaxSeconds, settle.converged ? "converged" : "not converged",
                     static_cast<long long>(settle.steps));

@@ -361,7 +361,9 @@ void App::syncLive() {
         residualHistory_.clear();
         // A relaxed shape (an opened snapshot, an undo back to one) is already the equilibrium
         // at the material's stiffness: a soft preview would only sag it and refine it back.
-        if (liveEnabled_ && !doc.isRelaxed()) live_->preview(doc.compiled().system, shownVersion_);
+        if (liveEnabled_ && !doc.isRelaxed())
+            live_->preview(doc.compiled().system, shownVersion_,
+                           interaction_->dragged().has_value());
         else live_->cancel(); // a run for the state before would go on for nothing
     }
     if (const auto state = live_->latest(); state && state->sequence != seenSequence_) {
