@@ -34,7 +34,7 @@ RelaxResult NewtonRun::run() {
     if (!analysis_.freeKnots.empty() && !(residual_ < tolerance)) {
         const bool hinted = stats_.hintIterations > 0;
         const StartStrain strain = startStrain();
-        warm = isWarm(strain, hinted && hintKeptAt_ >= 0);
+        warm = isWarm(strain, hintKeptAt_ >= 0);
         if (options_.continuation && !warm) {
             softScale = softStageScale(ratio);
             if (hinted && strain.largest <= kEditStageMaxStrain) // an edited relaxed shape
@@ -96,10 +96,10 @@ StartStrain NewtonRun::startStrain() const {
 
 /// Whether the start is warm: at least kWarmTautShare of the bars stretched by more than
 /// kTautStrain, none by more than kWarmMaxStrain, and, unless the start is the state of hinted
-/// iterations that was kept (`hinted`), the residual at most kWarmMaxResidual.
-bool NewtonRun::isWarm(const StartStrain& strain, bool hinted) const {
+/// iterations that was kept (`hintKept`), the residual at most kWarmMaxResidual.
+bool NewtonRun::isWarm(const StartStrain& strain, bool hintKept) const {
     return strain.tautShare >= kWarmTautShare && strain.largest <= kWarmMaxStrain &&
-           (hinted || residual_ <= kWarmMaxResidual);
+           (hintKept || residual_ <= kWarmMaxResidual);
 }
 
 /// The softest bar's EA over the mean load per held knot, at scale 1.

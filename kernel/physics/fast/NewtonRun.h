@@ -343,7 +343,7 @@ class NewtonRun {
     double materialLawResidual();
     bool hintStopRequested(bool moved, double startResidual);
     StartStrain startStrain() const;
-    bool isWarm(const StartStrain& strain, bool hinted) const;
+    bool isWarm(const StartStrain& strain, bool hintKept) const;
     double axialToLoad() const;
     double softStageScale(double axialToLoad) const;
     std::vector<Stage> planStages(double softScale, bool warm, double axialToLoad) const;
