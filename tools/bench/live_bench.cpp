@@ -20,8 +20,9 @@
 //   --preview-scale S                    the preview's stiffness scale (default: the studio's)
 //   --threads N                          the preview's threads (default: the studio's, every
 //                                        hardware thread but the one it keeps for its frames)
-//   --settle-threads N                   the threads of a cold preview (the first settle) and of
-//                                        a refine (default: the studio's, every hardware thread)
+//   --settle-threads N                   the threads of the runs no drag waits on: the first
+//                                        settle, --connect's drop and a refine (default: the
+//                                        studio's, every hardware thread)
 //   --double-steps                       the hinted steps in double precision throughout (the
 //                                        studio's are single, refined in double)
 //   --only bar|rows                      one of the two drags (for profiling)
@@ -416,8 +417,8 @@ int main(int argc, char** argv) {
                             : sheet ? "a slack sheet between two rails"
                                     : "the studio's demo tube";
         std::printf("netsculpt-bench-live: %s, %zu knots, %zu bars, %d x %d; "
-                    "preview backend %s, stiffness x%.3g, tolerance %.0e, %d thread(s) (%d for a "
-                    "cold preview or a refine), hinted steps in %s precision; built for %s\n",
+                    "preview backend %s, stiffness x%.3g, tolerance %.0e, %d thread(s) (%d for "
+                    "runs no drag waits on), hinted steps in %s precision; built for %s\n",
                     scene, system.knotCount(), system.barCount(), start.rows, start.columns,
                     options.backend.c_str(), previewScale(system, options.previewStiffnessScale),
                     options.previewTolerance, options.threads, options.settleThreads,
