@@ -28,6 +28,9 @@
 //   --journal F    the sculpture of journal F from its Eq. 2 start instead of the scenes (the
 //                  installation: netsculpt run scripts/installation.lua --out out -- --no-relax,
 //                  then --journal out/installation.netj --no-rk4; target 5 s)
+//   --perturb D    then how near a start has to be: the equilibrium found, every free knot moved
+//                  D metres in a random direction (the same ones every run), relaxed again at
+//                  the material's stiffness at once (no stages); iterations and where it ends
 
 #include "BenchScenes.h"
 #include "CholeskyBench.h"
@@ -45,6 +48,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <random>
 #include <string>
 #include <thread>
 #include <vector>
@@ -108,6 +112,7 @@ struct RunSettings {
     bool rk4 = true, trace = false;
     bool centre = false; ///< the net moved so that its bounding box is centred on the origin
     bool focus = true;   ///< FastRelaxer::setFocusRegions
+    double perturb = 0;  ///< m; > 0: perturbedRun after the fast path
 };
 
 /// Moves every knot so that the net's bounding box is centred on the system's origin: the nearer
@@ -124,6 +129,43 @@ void centreOnOrigin(MassSpringSystem& system) {
     const Vec3 centre = (lo + hi) * 0.5;
     for (Vec3& p : system.position)
         p -= centre;
+}
+
+/// A direction drawn uniformly from the unit sphere (rejection from the cube; the generator's raw
+/// output only, so the same directions on every standard library).
+Vec3 randomDirection(std::mt19937& random) {
+    const auto unit = [&] { return 2.0 * static_cast<double>(random()) / 4294967295.0 - 1.0; };
+    for (;;) {
+        const Vec3 v{unit(), unit(), unit()};
+        const double n = v.norm();
+        if (n > 1e-3 && n <= 1.0)
+            return v * (1.0 / n);
+    }
+}
+
+/// How near a start has to be: `equilibrium` with every free knot moved `distance` in a random
+/// direction, relaxed at the material's stiffness at once (RelaxOptions::continuation off: a
+/// start this near would otherwise be judged by its residual, often cold), and how far from
+/// `equilibrium` it ends.
+void perturbedRun(const MassSpringSystem& equilibrium, double distance,
+                  const RelaxOptions& options, bool focus) {
+    MassSpringSystem system = equilibrium;
+    std::mt19937 random(37);
+    for (std::size_t j = 0; j < system.knotCount(); ++j)
+        if (!system.fixed[j])
+            system.position[j] += randomDirection(random) * distance;
+    RelaxOptions direct = options;
+    direct.continuation = false;
+    FastRelaxer fast;
+    fast.setFocusRegions(focus);
+    const RelaxResult result = fast.relax(system, direct);
+    double farthest = 0;
+    for (std::size_t j = 0; j < system.knotCount(); ++j)
+        farthest = std::max(farthest, netsculpt::distance(system.position[j], equilibrium.position[j]));
+    std::printf("moved %.3g m: %s in %.3f s, residual %.3g, %lld Newton iterations; every knot "
+                "within %.3g m of the equilibrium found first\n",
+                distance, result.converged ? "converged" : "NOT converged", result.seconds,
+                result.residual, static_cast<long long>(fast.statistics().iterations), farthest);
 }
 
 /// The fast path (and RK4 unless --no-rk4) on `start`, against the target in seconds.
@@ -193,6 +235,8 @@ void runSystem(const std::string& name, MassSpringSystem start, double targetSec
                     result.seconds - stats.analysisSeconds - stats.factorSeconds -
                         stats.solveSeconds);
     std::printf("; %zu bars in compression at the end\n", compressedBars(system));
+    if (settings.perturb > 0 && result.converged)
+        perturbedRun(system, settings.perturb, options, settings.focus);
     if (!settings.rk4)
         return;
     MassSpringSystem reference = start;
@@ -322,10 +366,18 @@ int main(int argc, char** argv) {
             only = argv[++i];
         else if (arg == "--journal" && i + 1 < argc)
             journal = argv[++i];
+        else if (arg == "--perturb" && i + 1 < argc) {
+            settings.perturb = std::atof(argv[++i]);
+            if (!(settings.perturb > 0 && settings.perturb < 1e3)) {
+                std::fprintf(stderr, "netsculpt-bench-fast: --perturb %s: a distance in metres, "
+                                     "above 0 and below 1000\n", argv[i]);
+                return 2;
+            }
+        }
         else {
             std::fprintf(stderr, "usage: %s [--quick] [--threads N] [--rk4-cap S] [--no-rk4] "
                                  "[--scene NAME | --journal FILE.netj] [--cap S] [--centre] "
-                                 "[--trace] [--no-focus]\n", argv[0]);
+                                 "[--trace] [--no-focus] [--perturb D]\n", argv[0]);
             return 2;
         }
     }
