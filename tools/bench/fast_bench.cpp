@@ -134,7 +134,9 @@ void centreOnOrigin(MassSpringSystem& system) {
 /// A direction drawn uniformly from the unit sphere (rejection from the cube; the generator's raw
 /// output only, so the same directions on every standard library).
 Vec3 randomDirection(std::mt19937& random) {
-    const auto unit = [&] { return 2.0 * static_cast<double>(random()) / 4294967295.0 - 1.0; };
+    const auto unit = [&] {
+        return 2.0 * static_cast<double>(random()) / static_cast<double>(std::mt19937::max()) - 1.0;
+    };
     for (;;) {
         const Vec3 v{unit(), unit(), unit()};
         const double n = v.norm();
@@ -161,7 +163,8 @@ void perturbedRun(const MassSpringSystem& equilibrium, double distance,
     const RelaxResult result = fast.relax(system, direct);
     double farthest = 0;
     for (std::size_t j = 0; j < system.knotCount(); ++j)
-        farthest = std::max(farthest, netsculpt::distance(system.position[j], equilibrium.position[j]));
+        farthest =
+            std::max(farthest, netsculpt::distance(system.position[j], equilibrium.position[j]));
     std::printf("moved %.3g m: %s in %.3f s, residual %.3g, %lld Newton iterations; every knot "
                 "within %.3g m of the equilibrium found first\n",
                 distance, result.converged ? "converged" : "NOT converged", result.seconds,
