@@ -31,6 +31,8 @@
 //   --perturb D    then how near a start has to be: the equilibrium found, every free knot moved
 //                  D metres in a random direction (the same ones every run), relaxed again at
 //                  the material's stiffness at once (no stages); iterations and where it ends
+//   --perturb-hint with --perturb: that run starts with the equilibrium's own tensions as its
+//                  hint (RelaxOptions::startTensions, as an edit's run does)
 
 #include "BenchScenes.h"
 #include "CholeskyBench.h"
@@ -110,9 +112,10 @@ struct RunSettings {
     int threads = 0;
     double fastCap = 120, rk4Cap = 60;
     bool rk4 = true, trace = false;
-    bool centre = false; ///< the net moved so that its bounding box is centred on the origin
-    bool focus = true;   ///< FastRelaxer::setFocusRegions
-    double perturb = 0;  ///< m; > 0: perturbedRun after the fast path
+    bool centre = false;      ///< the net moved so that its bounding box is centred on the origin
+    bool focus = true;        ///< FastRelaxer::setFocusRegions
+    double perturb = 0;       ///< m; > 0: perturbedRun after the fast path
+    bool perturbHint = false; ///< perturbedRun hinted with the equilibrium's tensions
 };
 
 /// Moves every knot so that the net's bounding box is centred on the system's origin: the nearer
@@ -148,9 +151,10 @@ Vec3 randomDirection(std::mt19937& random) {
 /// How near a start has to be: `equilibrium` with every free knot moved `distance` in a random
 /// direction, relaxed at the material's stiffness at once (RelaxOptions::continuation off: a
 /// start this near would otherwise be judged by its residual, often cold), and how far from
-/// `equilibrium` it ends.
-void perturbedRun(const MassSpringSystem& equilibrium, double distance,
-                  const RelaxOptions& options, bool focus) {
+/// `equilibrium` it ends. With `hinted`, the run starts with the equilibrium's own tensions as
+/// its hint: how near a start has to be for an edit's mixed iterations.
+void perturbedRun(const MassSpringSystem& equilibrium, double distance, const RelaxOptions& options,
+                  bool focus, bool hinted) {
     MassSpringSystem system = equilibrium;
     std::mt19937 random(37);
     for (std::size_t j = 0; j < system.knotCount(); ++j)
@@ -158,6 +162,8 @@ void perturbedRun(const MassSpringSystem& equilibrium, double distance,
             system.position[j] += randomDirection(random) * distance;
     RelaxOptions direct = options;
     direct.continuation = false;
+    const std::vector<double> tensions = hinted ? barTensions(equilibrium) : std::vector<double>{};
+    direct.startTensions = tensions;
     FastRelaxer fast;
     fast.setFocusRegions(focus);
     const RelaxResult result = fast.relax(system, direct);
@@ -165,10 +171,12 @@ void perturbedRun(const MassSpringSystem& equilibrium, double distance,
     for (std::size_t j = 0; j < system.knotCount(); ++j)
         farthest =
             std::max(farthest, netsculpt::distance(system.position[j], equilibrium.position[j]));
-    std::printf("moved %.3g m: %s in %.3f s, residual %.3g, %lld Newton iterations; every knot "
-                "within %.3g m of the equilibrium found first\n",
-                distance, result.converged ? "converged" : "NOT converged", result.seconds,
-                result.residual, static_cast<long long>(fast.statistics().iterations), farthest);
+    std::printf("moved %.3g m%s: %s in %.3f s, residual %.3g, %lld Newton iterations (%lld "
+                "hinted); every knot within %.3g m of the equilibrium found first\n",
+                distance, hinted ? ", its tensions as the hint" : "",
+                result.converged ? "converged" : "NOT converged", result.seconds, result.residual,
+                static_cast<long long>(fast.statistics().iterations),
+                static_cast<long long>(fast.statistics().hintIterations), farthest);
 }
 
 /// The fast path (and RK4 unless --no-rk4) on `start`, against the target in seconds.
@@ -239,7 +247,7 @@ void runSystem(const std::string& name, MassSpringSystem start, double targetSec
                         stats.solveSeconds);
     std::printf("; %zu bars in compression at the end\n", compressedBars(system));
     if (settings.perturb > 0 && result.converged)
-        perturbedRun(system, settings.perturb, options, settings.focus);
+        perturbedRun(system, settings.perturb, options, settings.focus, settings.perturbHint);
     if (!settings.rk4)
         return;
     MassSpringSystem reference = start;
@@ -369,20 +377,30 @@ int main(int argc, char** argv) {
             only = argv[++i];
         else if (arg == "--journal" && i + 1 < argc)
             journal = argv[++i];
+        else if (arg == "--perturb-hint")
+            settings.perturbHint = true;
         else if (arg == "--perturb" && i + 1 < argc) {
             settings.perturb = std::atof(argv[++i]);
             if (!(settings.perturb > 0 && settings.perturb < 1e3)) {
-                std::fprintf(stderr, "netsculpt-bench-fast: --perturb %s: a distance in metres, "
-                                     "above 0 and below 1000\n", argv[i]);
+                std::fprintf(stderr,
+                             "netsculpt-bench-fast: --perturb %s: a distance in metres, "
+                             "above 0 and below 1000\n",
+                             argv[i]);
                 return 2;
             }
-        }
-        else {
-            std::fprintf(stderr, "usage: %s [--quick] [--threads N] [--rk4-cap S] [--no-rk4] "
-                                 "[--scene NAME | --journal FILE.netj] [--cap S] [--centre] "
-                                 "[--trace] [--no-focus] [--perturb D]\n", argv[0]);
+        } else {
+            std::fprintf(stderr,
+                         "usage: %s [--quick] [--threads N] [--rk4-cap S] [--no-rk4] "
+                         "[--scene NAME | --journal FILE.netj] [--cap S] [--centre] "
+                         "[--trace] [--no-focus] [--perturb D [--perturb-hint]]\n",
+                         argv[0]);
             return 2;
         }
+    }
+    if (settings.perturbHint && !(settings.perturb > 0)) {
+        std::fprintf(stderr, "netsculpt-bench-fast: --perturb-hint hints the run from a perturbed "
+                             "equilibrium: give --perturb D too\n");
+        return 2;
     }
     if (!journal.empty()) {
         try {
