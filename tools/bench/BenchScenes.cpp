@@ -3,6 +3,8 @@
 #include "model/Compiler.h"
 #include "model/ReferenceSculptures.h"
 
+#include <algorithm>
+
 namespace netsculpt::bench {
 
 Material realisticRope() {
@@ -23,6 +25,13 @@ MassSpringSystem bannerOnWavyRail(int rows, int columns, const Material& materia
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double largestDistance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+    double largest = 0;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        largest = std::max(largest, distance(a[i], b[i]));
+    return largest;
 }
 
 } // namespace netsculpt::bench

@@ -167,10 +167,7 @@ void perturbedRun(const MassSpringSystem& equilibrium, double distance, const Re
     FastRelaxer fast;
     fast.setFocusRegions(focus);
     const RelaxResult result = fast.relax(system, direct);
-    double farthest = 0;
-    for (std::size_t j = 0; j < system.knotCount(); ++j)
-        farthest =
-            std::max(farthest, netsculpt::distance(system.position[j], equilibrium.position[j]));
+    const double farthest = bench::largestDistance(system.position, equilibrium.position);
     std::printf("moved %.3g m%s: %s in %.3f s, residual %.3g, %lld Newton iterations (%lld "
                 "hinted); every knot within %.3g m of the equilibrium found first\n",
                 distance, hinted ? ", its tensions as the hint" : "",

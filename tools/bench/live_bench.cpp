@@ -44,6 +44,7 @@
 //                                        shape: the document's warm start of the edit; the
 //                                        copies cost the worker about 0.1 ms a shape)
 
+#include "BenchScenes.h"
 #include "InstructionSet.h"
 #include "commands/Document.h"
 #include "commands/HeapSettings.h"
@@ -66,6 +67,7 @@ using namespace netsculpt;
 namespace {
 
 using Clock = std::chrono::steady_clock;
+using bench::largestDistance;
 constexpr double kFrameSeconds = 1.0 / 30;
 
 double secondsSince(Clock::time_point start) {
@@ -135,13 +137,6 @@ class PublicationLog {
     std::vector<Entry> times_;
     std::vector<Shape> shapes_;
 };
-
-double largestDistance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-    double largest = 0;
-    for (std::size_t i = 0; i < a.size(); ++i)
-        largest = std::max(largest, distance(a[i], b[i]));
-    return largest;
-}
 
 /// What the screen shows during a step's re-relaxation, against the shape it settles in: per
 /// step, the largest distance of any knot from its settled place in the shape on screen k frames
