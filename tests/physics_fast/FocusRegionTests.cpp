@@ -248,14 +248,23 @@ TEST_CASE("fast: a relaxation that takes regions on their own ends in the whole'
 TEST_CASE("fast: a last stage that stalls takes a region at once, and ends in the whole's "
           "equilibrium",
           "[fast]") {
-    // The 60 x 41 banner's last stage stalls (measured: once, a few hundred knots of its strands
-    // out of balance at about 1e-3 of their weight while the mixed iterations' full steps leave
-    // them there). Its strands are softer than the 45 x 51 banner's above: the whole relaxed
-    // without regions ends 2.0e-5 m away, where another of a slack net's equilibria would be
-    // centimetres away.
-    const auto runs = relaxWithAndWithoutRegions(compileSculpture(banner(60, 41, 2e5)).system);
-    CHECK(runs.withRegions.stallFocusRegions > 0);
-    CHECK(runs.distance < 1e-4);
+    // A banner's last stage can stall: a few hundred knots of its strands out of balance at about
+    // 1e-3 of their weight while the mixed iterations' full steps leave them there. Whether it
+    // does depends on the last bits of the run's path, which differ between processors as well
+    // as between builds (measured: the 60 x 41 banner stalled on an AVX2 host, not on an
+    // AVX-512 host, built for either; the 40 x 51 one stalled on the AVX-512 host in both
+    // builds). So both run, and at least one must stall. Their strands are soft: the whole
+    // relaxed without regions ends up to 2.0e-5 m away, where another of a slack net's
+    // equilibria would be centimetres away.
+    std::int64_t stalls = 0;
+    for (const auto& [rows, columns] : {std::pair{40, 51}, std::pair{60, 41}}) {
+        CAPTURE(rows, columns);
+        const auto runs =
+            relaxWithAndWithoutRegions(compileSculpture(banner(rows, columns, 2e5)).system);
+        stalls += runs.withRegions.stallFocusRegions;
+        CHECK(runs.distance < 1e-4);
+    }
+    CHECK(stalls > 0);
 }
 
 TEST_CASE("fast: a run whose last stage converges quickly takes no region", "[fast]") {
