@@ -57,6 +57,26 @@ constexpr std::int64_t kCoefficientProduct = 20;
 static_assert(kSharedRows % kRegisterRows<double> == 0 && kSharedRows % kRegisterRows<float> == 0,
               "row ranges must start at register blocks");
 
+// Eigen blocks its products and triangular solves by the cache sizes it reads from the
+// processor, and the blocks set the order of each entry's sums: one build took other steps on two
+// processors of this machine kind (48 KiB L1 data and 1 MiB L2 against 32 KiB and 512 KiB; the
+// slack 100x200 sheet 230 against 191 iterations, docs/performance.md). Fixed sizes make a
+// build's factorizations the same bits on every processor; these are the AVX2 hosts'.
+constexpr std::ptrdiff_t kBlockingL1 = std::ptrdiff_t(32) << 10;
+constexpr std::ptrdiff_t kBlockingL2 = std::ptrdiff_t(512) << 10;
+constexpr std::ptrdiff_t kBlockingL3 = std::ptrdiff_t(16) << 20;
+
+/// Eigen's cache sizes set to the fixed ones when the processor (or anyone since) left others.
+/// Under a lock: the first factorizations of parts relaxed at once may come here together, and
+/// the write then happens before any of them runs a product; after it, the sizes are only read.
+void fixProductBlocking() {
+    static std::mutex mutex;
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (Eigen::l1CacheSize() != kBlockingL1 || Eigen::l2CacheSize() != kBlockingL2 ||
+        Eigen::l3CacheSize() != kBlockingL3)
+        Eigen::setCpuCacheSizes(kBlockingL1, kBlockingL2, kBlockingL3);
+}
+
 /// CHOLMOD's workspace for the duration of an analysis.
 class CholmodCommon {
   public:
@@ -634,6 +654,7 @@ bool SupernodalCholesky::factorize(std::span<const double> values, double shift,
     assert(analysed_ && values.size() == 9 * (nodes_ + pairs_) && shift >= 0);
     failed_ = false;
     precision_ = precision;
+    fixProductBlocking();
     if (precision == Precision::Single)
         runSchedule<float>(values, shift, pool);
     else

@@ -19,6 +19,8 @@
 // as without the split (the product and solve kernels are split only along their output, at
 // boundaries of Eigen's register blocks), so the bits do not change. The same holds for a
 // factorization in single precision (Precision), whose register blocks the ranges also respect.
+// Eigen's blocks by cache size are fixed too (not the processor's), so one build gives the same
+// bits on every processor.
 
 #include "physics/fast/HugePageArray.h"
 
