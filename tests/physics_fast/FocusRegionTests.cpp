@@ -252,9 +252,9 @@ TEST_CASE("fast: a last stage that stalls takes a region at once, and ends in th
     // 1e-3 of their weight while the mixed iterations' full steps leave them there. Whether it
     // does depends on the last bits of the run's path, which differ between builds (measured: the
     // 60 x 41 banner's stalls built for AVX2, not for AVX-512; the 40 x 51 one's for both). So
-    // both run, and at least one must stall. Their strands are soft: the whole
-    // relaxed without regions ends up to 2.0e-5 m away, where another of a slack net's
-    // equilibria would be centimetres away.
+    // both run, and at least one must stall. Their strands are soft: the whole relaxed without
+    // regions ends up to 2.0e-5 m away, where another of a slack net's equilibria would be
+    // centimetres away.
     std::int64_t stalls = 0;
     for (const auto& [rows, columns] : {std::pair{40, 51}, std::pair{60, 41}}) {
         CAPTURE(rows, columns);
