@@ -68,11 +68,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 using bench::largestDistance;
+using bench::secondsSince;
 constexpr double kFrameSeconds = 1.0 / 30;
-
-double secondsSince(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 /// Waits until the run for `generation` has ended; returns its final state.
 std::shared_ptr<const LiveState> awaitRun(const LiveRelaxer& live, std::uint64_t generation) {
