@@ -34,3 +34,18 @@ TEST_CASE("path length: second and third derivatives match finite differences", 
     CHECK(lengthSecondDerivative(d, d * 0.1) == Approx(0).margin(1e-15));
     CHECK(lengthThirdDerivative(Vec3{}, dp, dc) == 0);
 }
+
+TEST_CASE("path length: a shortened bent path passes through the old one's points", "[fast]") {
+    const Vec3 p0{0.02, -0.01, 0.005}, c0{-0.003, 0.004, 0.001}, e0{0.0005, -0.0002, 0.0007};
+    // Its moves, written out: a p + a^2 / 2 c + a^3 / 6 e.
+    CHECK(pathMove(p0, c0, e0, 2.0).x == Approx(0.04 - 0.006 + 0.0005 * 8 / 6).epsilon(1e-12));
+    Vec3 p = p0, c = c0, e = e0;
+    const double f = 0.3;
+    shortenPath(p, c, e, f);
+    for (double a : {0.5, 1.0, 4.0, 64.0}) {
+        const Vec3 shortened = pathMove(p, c, e, a), original = pathMove(p0, c0, e0, f * a);
+        CHECK((shortened - original).norm() <= 1e-12 * (1 + original.norm()));
+    }
+    // Not the same path as a straight scaling of the whole move.
+    CHECK((pathMove(p, c, e, 1.0) - pathMove(p0, c0, e0, 1.0) * f).norm() > 1e-5);
+}

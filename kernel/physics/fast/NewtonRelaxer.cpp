@@ -134,7 +134,7 @@ std::vector<Stage> NewtonRun::planStages(double softScale, bool warm, double axi
         stages.push_back({softScale, softTolerance, false, 0.0, bent(softScale), third(softScale)});
         for (double s = softScale * kStageFactor; s < 1 / std::sqrt(kStageFactor);
              s *= kStageFactor)
-            stages.push_back({s, softTolerance, false, 0.0, bent(s), third(s)});
+            stages.push_back({s, softTolerance, false, 0.0, bent(s), third(s), true});
         for (double blend : kFinalBlends)
             if (blend > 0)
                 stages.push_back({1.0, std::max(kBlendTolerance, tolerance), true, blend,
@@ -196,6 +196,8 @@ void NewtonRun::runStage(const Stage& stage, bool lastStage, bool slack) {
             bendStep();
         if (thirdOrder_)
             bendThirdOrder();
+        if (stage.firstStepCapped && steps_ == stageStart + 1)
+            capStepLength();
         double slope = 0;
         for (std::uint32_t j : analysis_.freeKnots)
             slope += force_[j].dot(step_[j]);

@@ -45,10 +45,10 @@ NewtonRun::NewtonRun(MassSpringSystem& system, const RelaxOptions& options,
     double restSum = 0;
     for (double rest : system.restLength)
         restSum += rest;
-    const double meanRest = bars > 0 && restSum > 0 ? restSum / static_cast<double>(bars) : 1.0;
+    meanRest_ = bars > 0 && restSum > 0 ? restSum / static_cast<double>(bars) : 1.0;
     dampingUnit_.resize(analysis.freeKnots.size());
     for (std::size_t f = 0; f < analysis.freeKnots.size(); ++f)
-        dampingUnit_[f] = weightOf_[analysis.freeKnots[f]] / meanRest;
+        dampingUnit_[f] = weightOf_[analysis.freeKnots[f]] / meanRest_;
 }
 
 
@@ -280,6 +280,19 @@ void NewtonRun::bendThirdOrder() {
         }
     });
     solveBarTerms(bendThird_);
+}
+
+/// The step's path shortened so that its full step moves no knot further than kFirstStepCap
+/// mean rest lengths (unchanged when it already moves none that far).
+void NewtonRun::capStepLength() {
+    double largest = 0;
+    for (std::uint32_t j : analysis_.freeKnots)
+        largest = std::max(largest, displacement(j, 1.0).norm());
+    const double cap = kFirstStepCap * meanRest_;
+    if (!(largest > cap))
+        return;
+    for (std::uint32_t j : analysis_.freeKnots)
+        shortenPath(step_[j], bend_[j], bendThird_[j], cap / largest);
 }
 
 /// out = (H + mu I)^-1 (-sum_b barTerm_[b] l_b grad l_b) with the current factor: per free knot j,

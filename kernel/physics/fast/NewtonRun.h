@@ -41,6 +41,15 @@ constexpr double kMaxSoftScale = 0.1;
 // to bring the shape near the next one: it stops at kSoftTolerance.
 constexpr double kStageFactor = 100;
 constexpr double kSoftTolerance = 1e-1;
+// The first step of each of those stiffer stages starts its line search from the length at
+// which no knot moves more than kFirstStepCap mean rest lengths (the bent path shortened,
+// PathLength.h), and lengthens it from there while the energy falls (expandStep). The soft
+// stage's stretched bars now pull kStageFactor times harder, and the full Newton step, linear
+// in the slack parts' folding modes, moved knots up to 0.3 m on the 100x200 sheet and left
+// 15,500 of its 39,500 bars in compression (1,400 before it, 2,900 at the end): the stage then
+// took 57 whole iterations to unfold them, 32 after the shortened step (docs/performance.md,
+// forty-second session).
+constexpr double kFirstStepCap = 0.1;
 // A slack net (bars in compression at the first soft stage's equilibrium) is then taken to the
 // material's stiffness first with compression stiffness max(k_c, blend k_s) for each blend of
 // kFinalBlends (1: the energy has no kink at the rest length, so bars hovering at zero tension
@@ -238,6 +247,7 @@ struct Stage {
     double blend; ///< compression stiffness max(k_c, blend k_s)
     bool bent;    ///< its steps are bent (kBendAxialToLoad)
     bool thirdOrder; ///< ... to the third order (kThirdOrderAxialToLoad)
+    bool firstStepCapped = false; ///< a slack net's stiffer stage (kFirstStepCap)
 };
 
 /// How a run's start is stretched: the share of its bars stretched by more than kTautStrain,
@@ -319,6 +329,7 @@ class NewtonRun {
     bool linearResidualWithin(const std::vector<double>& r, double tolerance) const;
     void bendStep();
     void bendThirdOrder();
+    void capStepLength();
     void solveBarTerms(std::vector<Vec3>& out);
     /// Bar b's stiffness at the current scale and compression law for `extension` (l - l_eq).
     double stiffness(std::size_t b, double extension) const {
@@ -393,6 +404,7 @@ class NewtonRun {
     double residual_ = 0;            ///< at x_, current scale
     double shift_ = kMinShift;       ///< lambda of the Levenberg shift
     double damping_ = 0;             ///< lambda of the weight-scaled shift (energy stages)
+    double meanRest_ = 1;            ///< the bars' mean rest length, m
     std::vector<double>& dampingUnit_; ///< per free knot: m_j |g| / (mean rest length), N/m
     double meanDiagonal_ = 1;
     bool windy_ = false;

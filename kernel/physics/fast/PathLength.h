@@ -31,4 +31,17 @@ inline double lengthThirdDerivative(const Vec3& d, const Vec3& dp, const Vec3& d
     return f3 / (2 * l) - 3 * f1 * f2 / (4 * l3) + 3 * f1 * f1 * f1 / (8 * l3 * l * l);
 }
 
+/// A knot's move at length a along a bent step with first-, second- and third-order parts p, c
+/// and e: a p + a^2 / 2 c + a^3 / 6 e.
+inline Vec3 pathMove(const Vec3& p, const Vec3& c, const Vec3& e, double a) {
+    return p * a + c * (0.5 * a * a) + e * (a * a * a / 6);
+}
+
+/// The same path shortened by the factor f: its move at a is the old one's at f a.
+inline void shortenPath(Vec3& p, Vec3& c, Vec3& e, double f) {
+    p *= f;
+    c *= f * f;
+    e *= f * f * f;
+}
+
 } // namespace netsculpt::newton
