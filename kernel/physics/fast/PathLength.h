@@ -2,7 +2,8 @@
 // How a bar's length changes along a curved step of its ends: the derivatives, at a = 0, of
 // l(a) = |d + a dp + a^2 / 2 dc| (d the bar's vector, dp and dc its ends' relative first- and
 // second-order steps). The bent steps of the fast backend (NewtonRun.h) undo the stretch these
-// describe. Internal to kernel/physics/fast.
+// describe; a knot's move along such a path, and the path shortened (a stiffer stage's first
+// step, NewtonRun::capStepLength). Internal to kernel/physics/fast.
 
 #include "geometry/Vec3.h"
 
