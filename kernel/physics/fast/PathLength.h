@@ -33,7 +33,9 @@ inline double lengthThirdDerivative(const Vec3& d, const Vec3& dp, const Vec3& d
 }
 
 /// A knot's move at length a along a bent step with first-, second- and third-order parts p, c
-/// and e: a p + a^2 / 2 c + a^3 / 6 e.
+/// and e: a p + a^2 / 2 c + a^3 / 6 e. NewtonRun::displacement computes the same move inline
+/// (without e below the third order): written through this function the 100x200 sheet's run
+/// ends with other last bits (residual 3.69e-7 against 3.51e-7, the same 177 iterations).
 inline Vec3 pathMove(const Vec3& p, const Vec3& c, const Vec3& e, double a) {
     return p * a + c * (0.5 * a * a) + e * (a * a * a / 6);
 }
